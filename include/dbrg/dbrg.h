@@ -1,0 +1,332 @@
+/*
+ * dbrg — surface reconstruction from unorganized 3D points by Delaunay-based region growing.
+ *
+ * The only public header of the library. Valid C99 and C++; depends on <stddef.h> and <stdint.h> only.
+ *
+ * Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
+ * reconstruction from unorganized points", Computer-Aided Design 37 (2005).
+ *
+ * Thread safety: the library has no global mutable state. Any number of calls may run at the same
+ * time on different inputs; a result object (dbrg_mesh, dbrg_tetrahedralization) may be read from
+ * several threads at once, but must not be read while another thread destroys it. Callbacks
+ * (allocator, progress) run on the calling thread.
+ *
+ * ABI stability: within one major version, functions are only added, never removed or changed;
+ * enum values are pinned and only grow (a status value is never reused); handles are opaque;
+ * option and statistics structs begin with `size_t struct_size`, only grow at their end, and the
+ * library reads or writes no byte past the size the caller says it has. Everything marked
+ * EXPERIMENTAL may change in a minor version.
+ */
+#ifndef DBRG_DBRG_H
+#define DBRG_DBRG_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define DBRG_VERSION_MAJOR 0
+#define DBRG_VERSION_MINOR 1
+#define DBRG_VERSION_PATCH 0
+#define DBRG_VERSION_NUMBER (DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH)
+#define DBRG_VERSION_STRING "0.1.0"
+
+#if defined(_WIN32) && defined(DBRG_SHARED_BUILD)
+#define DBRG_API __declspec(dllexport)
+#elif defined(_WIN32) && defined(DBRG_SHARED)
+#define DBRG_API __declspec(dllimport)
+#elif defined(__GNUC__)
+#define DBRG_API __attribute__((visibility("default")))
+#else
+#define DBRG_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------------------------------
+ * Version
+ * ---------------------------------------------------------------------------------------------- */
+
+/* Returns DBRG_VERSION_NUMBER of the library that is linked, so that a caller can detect a
+ * mismatch between the header it was compiled with and the library it runs with. */
+DBRG_API uint32_t dbrg_version_number(void);
+
+/* Returns DBRG_VERSION_STRING of the linked library ("MAJOR.MINOR.PATCH"); never NULL. */
+DBRG_API const char* dbrg_version_string(void);
+
+/* ------------------------------------------------------------------------------------------------
+ * Status codes. Values are pinned and never reused.
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef enum dbrg_status {
+    DBRG_OK = 0,
+    DBRG_ERR_INVALID_ARGUMENT = 1,  /* a NULL pointer, a zero or too small stride, an unknown enum value */
+    DBRG_ERR_INVALID_PARAMETER = 2, /* a dbrg_params field is out of range (message names it) */
+    DBRG_ERR_NON_FINITE_INPUT = 3,  /* a coordinate is NaN or infinite (message names the point index) */
+    DBRG_ERR_TOO_FEW_POINTS = 4,    /* fewer than 4 distinct points */
+    DBRG_ERR_DEGENERATE_INPUT = 5,  /* all points collinear or coplanar: no volume to tetrahedralize */
+    DBRG_ERR_TOO_MANY_POINTS = 6,   /* more points than DBRG_MAX_POINTS, or count * stride overflows */
+    DBRG_ERR_OUT_OF_MEMORY = 7,     /* an allocation failed; nothing leaked */
+    DBRG_ERR_CANCELLED = 8,         /* the progress callback asked to stop */
+    DBRG_ERR_UNSUPPORTED = 9,       /* the feature is not available in this build (e.g. the TetGen backend) */
+    DBRG_ERR_INTERNAL = 10          /* a bug in dbrg: please report it with the input */
+} dbrg_status;
+
+/* Returns the name of a status as a static string ("DBRG_ERR_NON_FINITE_INPUT"); unknown values
+ * give "DBRG_STATUS_UNKNOWN". Never NULL. */
+DBRG_API const char* dbrg_status_string(dbrg_status status);
+
+/* The largest number of input points a call accepts: indices in results are 32-bit and
+ * UINT32_MAX is reserved as a sentinel. */
+#define DBRG_MAX_POINTS ((size_t)0x7fffffffu)
+
+/* The value of an adjacency entry with no neighbour (a convex-hull face). */
+#define DBRG_NO_NEIGHBOR UINT32_MAX
+
+/* ------------------------------------------------------------------------------------------------
+ * Caller-supplied memory allocation. Every byte the library allocates during a call or holds in a
+ * result object goes through it; no global allocator is ever set.
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef struct dbrg_allocator {
+    /* Returns at least `size` bytes aligned for any scalar type, or NULL on failure. */
+    void* (*allocate)(void* user, size_t size);
+    /* Resizes a block from `old_size` to `new_size` bytes, keeping its contents; returns NULL on
+     * failure, in which case the old block stays valid and is freed later by `deallocate`. */
+    void* (*reallocate)(void* user, void* block, size_t old_size, size_t new_size);
+    /* Frees a block obtained from allocate/reallocate; `size` is the size it was given. */
+    void (*deallocate)(void* user, void* block, size_t size);
+    /* Passed back as the first argument of every callback. */
+    void* user;
+} dbrg_allocator;
+
+/* ------------------------------------------------------------------------------------------------
+ * Progress and cancellation
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef enum dbrg_stage {
+    DBRG_STAGE_VALIDATE = 0,     /* checking and conditioning the input points */
+    DBRG_STAGE_SORT = 1,         /* spatial sort of the points */
+    DBRG_STAGE_DELAUNAY = 2,     /* Delaunay tetrahedralization */
+    DBRG_STAGE_GROW = 3,         /* region growing; the fraction is the share of points reached */
+    DBRG_STAGE_FILL_HOLES = 4,   /* recursive hole filling */
+    DBRG_STAGE_OUTPUT = 5        /* building the result */
+} dbrg_stage;
+
+/* Called from the computing thread with the current stage and its completed fraction in [0, 1].
+ * Return 0 to continue, any other value to cancel: the call then returns DBRG_ERR_CANCELLED. */
+typedef int (*dbrg_progress_fn)(void* user, dbrg_stage stage, double fraction);
+
+/* ------------------------------------------------------------------------------------------------
+ * Input points: pointer + count + byte stride, float or double. The library reads them during the
+ * call only and never keeps the pointer.
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef enum dbrg_scalar_type {
+    DBRG_FLOAT32 = 0,
+    DBRG_FLOAT64 = 1
+} dbrg_scalar_type;
+
+typedef struct dbrg_points {
+    const void* data;         /* x, y, z of point 0, then point 1 at data + stride_bytes, ... */
+    size_t count;             /* number of points */
+    size_t stride_bytes;      /* distance between consecutive points; at least 3 * sizeof(scalar) */
+    dbrg_scalar_type type;    /* DBRG_FLOAT32 or DBRG_FLOAT64 */
+} dbrg_points;
+
+/* ------------------------------------------------------------------------------------------------
+ * Parameters
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef enum dbrg_backend {
+    DBRG_BACKEND_BUILTIN = 0,    /* the built-in Bowyer-Watson tetrahedralization (always available) */
+    DBRG_BACKEND_TETGEN = 1      /* TetGen (AGPL); only in builds configured with -Dtetgen=enabled */
+} dbrg_backend;
+
+typedef enum dbrg_boundary_mean {
+    DBRG_BOUNDARY_MEAN_LOCAL = 0,  /* r_a over the triangles around the candidate's edge */
+    DBRG_BOUNDARY_MEAN_GLOBAL = 1  /* r_a over all of S, as in the paper (section 4) */
+} dbrg_boundary_mean;
+
+typedef struct dbrg_params {
+    size_t struct_size;              /* sizeof(dbrg_params), set by dbrg_params_init */
+
+    /* theta_sliver (paper 3.1.2): a Delaunay triangle whose dihedral angle with its neighbour in the
+     * surface is this large or larger is never attached. Radians, in (pi/2, pi). Default 5*pi/6. */
+    double sliver_angle;
+    /* M (paper section 4): a candidate whose circumradius exceeds M * r_a is not attached, which
+     * leaves the boundary of an open surface open. 0 turns the test off (closed surfaces only).
+     * Must be 0 or > 1. */
+    double boundary_factor;
+    /* Over which triangles r_a is averaged. */
+    dbrg_boundary_mean boundary_mean;
+    /* Non-zero: fill holes left by rejected candidates (paper section 5). Default 1. */
+    uint32_t fill_holes;
+    /* Holes with more boundary edges than this stay open. At least 3. */
+    uint32_t max_hole_edges;
+    /* How many surface components may be grown from separate seeds (a scan of several objects).
+     * At least 1. */
+    uint32_t max_components;
+    /* Which tetrahedralization to use. */
+    dbrg_backend backend;
+    /* Worker threads: 1 runs on the calling thread only, 0 uses every hardware thread. The result is
+     * the same for any value. */
+    uint32_t threads;
+
+    /* NULL: the C library's malloc/realloc/free. Copied at the start of the call. */
+    const dbrg_allocator* allocator;
+    /* NULL: no progress reports. */
+    dbrg_progress_fn progress;
+    void* progress_user;
+} dbrg_params;
+
+/* Fills `params` with the defaults (the paper's values where it gives one) and sets struct_size.
+ * Returns DBRG_ERR_INVALID_ARGUMENT when params is NULL. */
+DBRG_API dbrg_status dbrg_params_init(dbrg_params* params);
+
+/* Checks every field of `params`. Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL, or a
+ * struct_size the library does not know), or DBRG_ERR_INVALID_PARAMETER. When `message` is not
+ * NULL, a NUL-terminated sentence naming the offending field is written into it (at most
+ * `message_capacity` bytes including the NUL). */
+DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* message, size_t message_capacity);
+
+/* Checks an input point array without computing anything: NULL data with a non-zero count, a
+ * stride below 3 scalars, count * stride overflow, more than DBRG_MAX_POINTS points, a NaN or
+ * infinite coordinate (the message names the first such point), fewer than 4 distinct points.
+ * `allocator` may be NULL (malloc). `message` as in dbrg_params_validate. */
+DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_allocator* allocator,
+                                          char* message, size_t message_capacity);
+
+/* ------------------------------------------------------------------------------------------------
+ * Reconstruction
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef struct dbrg_mesh dbrg_mesh;
+
+/* Reconstructs an oriented manifold triangle surface through the points.
+ * Returns DBRG_OK or the status of the first problem found.
+ * points: the input; read during the call only.
+ * params: NULL for the defaults; otherwise initialised with dbrg_params_init.
+ * out_mesh: receives a result object on every status except DBRG_ERR_INVALID_ARGUMENT for a NULL
+ *   out_mesh and DBRG_ERR_OUT_OF_MEMORY before the object exists (then *out_mesh is NULL). On failure
+ *   the object has no triangles and carries the status and a message. Destroy it with
+ *   dbrg_mesh_destroy in every case. */
+DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_params* params, dbrg_mesh** out_mesh);
+
+/* Frees a result and everything it holds. NULL is accepted and ignored. */
+DBRG_API void dbrg_mesh_destroy(dbrg_mesh* mesh);
+
+/* Returns the status of the call that made `mesh` (DBRG_ERR_INVALID_ARGUMENT for NULL). */
+DBRG_API dbrg_status dbrg_mesh_status(const dbrg_mesh* mesh);
+
+/* Returns a NUL-terminated sentence on what went wrong, or "" on success. Valid until the mesh is
+ * destroyed. mesh may be NULL (returns ""). */
+DBRG_API const char* dbrg_mesh_message(const dbrg_mesh* mesh);
+
+/* Returns the number of input points the triangle indices refer to (0 for NULL). */
+DBRG_API uint32_t dbrg_mesh_point_count(const dbrg_mesh* mesh);
+
+/* Returns the number of triangles (0 for NULL or a failed call). */
+DBRG_API uint32_t dbrg_mesh_triangle_count(const dbrg_mesh* mesh);
+
+/* Returns 3 * dbrg_mesh_triangle_count indices into the caller's input points, each triangle
+ * counter-clockwise seen from outside (closed components face outward). Merged duplicate points
+ * are represented by the smallest input index among them. NULL when there are no triangles. */
+DBRG_API const uint32_t* dbrg_mesh_triangles(const dbrg_mesh* mesh);
+
+/* Returns the number of boundary loops (open-surface borders and holes left open). */
+DBRG_API uint32_t dbrg_mesh_boundary_loop_count(const dbrg_mesh* mesh);
+
+/* Returns the point indices of boundary loop `loop` in order along the loop (the loop's edges run
+ * opposite to the orientation of their triangles), and writes its length to *out_count.
+ * Returns NULL and writes 0 when mesh is NULL or loop is out of range. out_count may be NULL. */
+DBRG_API const uint32_t* dbrg_mesh_boundary_loop(const dbrg_mesh* mesh, uint32_t loop, uint32_t* out_count);
+
+/* Figures about one reconstruction. Times are wall-clock seconds. */
+typedef struct dbrg_stats {
+    size_t struct_size;              /* set by the caller to sizeof(dbrg_stats) before the call */
+
+    uint32_t input_points;           /* points in the caller's array */
+    uint32_t unique_points;          /* after merging exact duplicates */
+    uint32_t duplicates_merged;      /* input_points - unique_points */
+    uint32_t tetrahedra;             /* finite Delaunay tetrahedra */
+    uint32_t triangles;              /* triangles in the result */
+    uint32_t vertices_used;          /* distinct points the result's triangles use */
+    uint32_t boundary_edges;         /* edges of the result with one triangle */
+    uint32_t boundary_loops;
+    uint32_t components;             /* surfaces grown from separate seeds */
+
+    uint64_t candidates_evaluated;   /* candidate triangles popped from the priority queue */
+    uint64_t rejected_edge_nonmanifold; /* would give an edge a third triangle */
+    uint64_t rejected_orientation;   /* orientation incompatible with a neighbour */
+    uint64_t rejected_bowtie;        /* would make a vertex non-manifold (a neck) */
+    uint64_t rejected_dihedral;      /* dihedral angle with a neighbour >= sliver_angle */
+    uint64_t rejected_boundary;      /* circumradius above M * r_a (open-surface boundary) */
+
+    uint32_t holes_found;
+    uint32_t holes_filled;
+    uint32_t holes_left_open;
+    uint32_t hole_triangles_added;
+    uint32_t hole_triangles_removed; /* by the recursive enlargement of holes */
+
+    uint64_t predicate_calls;        /* orient3d + insphere evaluations */
+    uint64_t predicate_filter_failures; /* of those, how many the floating-point filter could not decide */
+    uint64_t predicate_perturbations;   /* of those, how many were exactly degenerate (symbolic perturbation) */
+
+    double seconds_validate;
+    double seconds_sort;
+    double seconds_delaunay;
+    double seconds_grow;
+    double seconds_fill_holes;
+    double seconds_output;
+    double seconds_total;
+
+    size_t peak_bytes;               /* the most memory held through the allocator at once */
+} dbrg_stats;
+
+/* Copies the statistics of the call that made `mesh` into `stats`, up to stats->struct_size bytes.
+ * Returns DBRG_ERR_INVALID_ARGUMENT when mesh or stats is NULL or struct_size is too small to hold
+ * the struct_size field. */
+DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats);
+
+/* ------------------------------------------------------------------------------------------------
+ * Delaunay tetrahedralization — EXPERIMENTAL
+ * ---------------------------------------------------------------------------------------------- */
+
+typedef struct dbrg_tetrahedralization dbrg_tetrahedralization;
+
+/* Computes the Delaunay tetrahedralization of the points (exact predicates, symbolic perturbation for
+ * cospherical points). Uses params->backend, allocator and progress; the surface parameters are ignored.
+ * Returns and fills *out exactly like dbrg_reconstruct. */
+DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_params* params,
+                                         dbrg_tetrahedralization** out);
+
+/* Frees a tetrahedralization. NULL is accepted and ignored. */
+DBRG_API void dbrg_tetrahedralization_destroy(dbrg_tetrahedralization* tets);
+
+/* Returns the status of the call that made `tets` (DBRG_ERR_INVALID_ARGUMENT for NULL). */
+DBRG_API dbrg_status dbrg_tetrahedralization_status(const dbrg_tetrahedralization* tets);
+
+/* Returns a NUL-terminated message on what went wrong, or "". NULL gives "". */
+DBRG_API const char* dbrg_tetrahedralization_message(const dbrg_tetrahedralization* tets);
+
+/* Returns the number of finite tetrahedra (0 for NULL or a failed call). */
+DBRG_API uint32_t dbrg_tetrahedralization_tet_count(const dbrg_tetrahedralization* tets);
+
+/* Returns 4 * tet_count indices into the caller's points; each tetrahedron (a, b, c, d) is
+ * positively oriented: d lies on the side of plane (a, b, c) from which a, b, c appear clockwise.
+ * NULL when there are none. */
+DBRG_API const uint32_t* dbrg_tetrahedralization_tets(const dbrg_tetrahedralization* tets);
+
+/* Returns 4 * tet_count entries: entry 4*t + f is the tetrahedron across the face of t opposite its
+ * vertex f, or DBRG_NO_NEIGHBOR on the convex hull. NULL when there are none. */
+DBRG_API const uint32_t* dbrg_tetrahedralization_adjacency(const dbrg_tetrahedralization* tets);
+
+/* Returns the number of distinct points (duplicates merged), 0 for NULL. */
+DBRG_API uint32_t dbrg_tetrahedralization_unique_point_count(const dbrg_tetrahedralization* tets);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* DBRG_DBRG_H */

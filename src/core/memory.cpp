@@ -1,0 +1,53 @@
+// Memory: the caller's allocator behind a small interface that counts bytes and remembers failure.
+#include "core/memory.h"
+
+#include <stdlib.h>
+
+namespace dbrg {
+namespace {
+
+void* system_allocate(void*, size_t size) { return malloc(size); }
+void* system_reallocate(void*, void* block, size_t, size_t new_size) { return realloc(block, new_size); }
+void system_deallocate(void*, void* block, size_t) { free(block); }
+
+} // namespace
+
+Memory::Memory(const dbrg_allocator* allocator) {
+    if (allocator && allocator->allocate && allocator->reallocate && allocator->deallocate) {
+        allocator_ = *allocator;
+    } else {
+        allocator_ = dbrg_allocator{system_allocate, system_reallocate, system_deallocate, nullptr};
+    }
+}
+
+void* Memory::allocate(size_t size) {
+    if (size == 0) return nullptr;
+    void* block = allocator_.allocate(allocator_.user, size);
+    if (!block) {
+        failed_ = true;
+        return nullptr;
+    }
+    in_use_ += size;
+    if (in_use_ > peak_) peak_ = in_use_;
+    return block;
+}
+
+void* Memory::reallocate(void* block, size_t old_size, size_t new_size) {
+    if (!block) return allocate(new_size);
+    void* moved = allocator_.reallocate(allocator_.user, block, old_size, new_size);
+    if (!moved) {
+        failed_ = true;
+        return nullptr;
+    }
+    in_use_ = in_use_ - old_size + new_size;
+    if (in_use_ > peak_) peak_ = in_use_;
+    return moved;
+}
+
+void Memory::release(void* block, size_t size) {
+    if (!block) return;
+    allocator_.deallocate(allocator_.user, block, size);
+    in_use_ -= size;
+}
+
+} // namespace dbrg

@@ -1,0 +1,65 @@
+// Point input: checks the caller's strided float/double array and copies it into x, y, z doubles.
+#include "core/point_input.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "core/status.h"
+
+namespace dbrg {
+namespace {
+
+template <class Scalar>
+dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride, Context& context, Array<double>& xyz) {
+    double* out = xyz.data();
+    for (size_t i = 0; i < count; ++i) {
+        Scalar p[3];
+        memcpy(p, bytes + i * stride, sizeof p);  // the caller's stride need not keep scalars aligned
+        for (int k = 0; k < 3; ++k) {
+            if (!isfinite(p[k])) {
+                return context.fail(DBRG_ERR_NON_FINITE_INPUT, "point %zu has a %s %c coordinate", i,
+                                    isnan(p[k]) ? "NaN" : "infinite", "xyz"[k]);
+            }
+            out[3 * i + k] = static_cast<double>(p[k]);
+        }
+    }
+    return DBRG_OK;
+}
+
+} // namespace
+
+dbrg_status read_points(const dbrg_points* points, Context& context, Array<double>& xyz) {
+    if (!points) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points is NULL");
+    if (points->type != DBRG_FLOAT32 && points->type != DBRG_FLOAT64) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->type is %d; expected DBRG_FLOAT32 or DBRG_FLOAT64",
+                            static_cast<int>(points->type));
+    }
+    const size_t scalar_size = points->type == DBRG_FLOAT32 ? sizeof(float) : sizeof(double);
+    if (points->stride_bytes < 3 * scalar_size) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->stride_bytes is %zu; a point needs at least %zu bytes",
+                            points->stride_bytes, 3 * scalar_size);
+    }
+    if (points->count > DBRG_MAX_POINTS) {
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", points->count,
+                            static_cast<size_t>(DBRG_MAX_POINTS));
+    }
+    if (points->count > (SIZE_MAX - 3 * scalar_size) / points->stride_bytes) {
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points at a stride of %zu bytes overflow the address space",
+                            points->count, points->stride_bytes);
+    }
+    if (points->count > 0 && !points->data) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->data is NULL but points->count is %zu", points->count);
+    }
+    if (!xyz.resize(3 * points->count)) return context.fail_out_of_memory();
+    const unsigned char* bytes = static_cast<const unsigned char*>(points->data);
+    DBRG_PROPAGATE(points->type == DBRG_FLOAT32
+                       ? copy_points<float>(bytes, points->count, points->stride_bytes, context, xyz)
+                       : copy_points<double>(bytes, points->count, points->stride_bytes, context, xyz));
+    if (points->count < 4) {
+        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given; at least 4 distinct points are needed",
+                            points->count);
+    }
+    return DBRG_OK;
+}
+
+} // namespace dbrg

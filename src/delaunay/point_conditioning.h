@@ -1,0 +1,34 @@
+// Point conditioning: turns the caller's finite points into the distinct, well-scaled, coordinate-ordered
+// point set that the tetrahedralization and the surface work on.
+#pragma once
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+
+namespace dbrg {
+
+struct ConditionedPoints {
+    explicit ConditionedPoints(Memory& memory) : coordinates(memory), input_index(memory) {}
+
+    // x, y, z of each distinct point, translated by the bounding box's minimum corner and scaled by
+    // 2^scale_exponent so the largest extent lies in [0.5, 1). Sorted lexicographically by (x, y, z):
+    // vertex ids therefore depend on the coordinates only, never on the caller's order.
+    Array<double> coordinates;
+    // For each distinct point, the smallest caller index among the input points merged into it.
+    Array<uint32_t> input_index;
+    int scale_exponent = 0;
+    uint32_t duplicates_merged = 0;
+
+    uint32_t size() const { return static_cast<uint32_t>(input_index.size()); }
+    const double* point(uint32_t v) const { return coordinates.data() + 3 * static_cast<size_t>(v); }
+};
+
+// Conditions `count` finite points given as x, y, z triples. Merges points that are equal after the
+// transform. Fails with DBRG_ERR_TOO_FEW_POINTS (fewer than 4 distinct points) or DBRG_ERR_DEGENERATE_INPUT
+// (all collinear, all coplanar), each with a message saying how many distinct points there were.
+dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out);
+
+} // namespace dbrg

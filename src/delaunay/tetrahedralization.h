@@ -1,0 +1,106 @@
+// Tetrahedralization: the compact tetrahedron store of a 3D Delaunay tetrahedralization and the queries
+// region growing needs (triangles around an edge, tetrahedra around a vertex).
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+#include "predicates/predicates.h"
+
+namespace dbrg {
+
+constexpr uint32_t NO_TET = UINT32_MAX;
+// The vertex at infinity: every convex-hull face has an infinite tetrahedron behind it.
+constexpr uint32_t INFINITE_VERTEX = UINT32_MAX;
+
+// Local numbering: face lf of a tetrahedron is the face opposite its local vertex lf. Finite
+// tetrahedra are positively oriented: orient3d(v0, v1, v2, v3) > 0. In an infinite tetrahedron the
+// infinite vertex takes the place of a finite one and the orientation is the one it would have if
+// the infinite vertex were a point far outside the hull.
+class Tetrahedralization {
+public:
+    explicit Tetrahedralization(Memory& memory);
+
+    // Computes the Delaunay tetrahedralization of `count` distinct points (x, y, z triples that stay
+    // alive and unchanged as long as this object is used). Reports DBRG_STAGE_SORT and
+    // DBRG_STAGE_DELAUNAY progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY, DBRG_ERR_CANCELLED or
+    // DBRG_ERR_DEGENERATE_INPUT (with the message set on the context).
+    dbrg_status build(const double* points, uint32_t count, Context& context);
+
+    uint32_t vertex_count() const { return vertex_count_; }
+    const double* point(uint32_t v) const { return points_ + 3 * static_cast<size_t>(v); }
+
+    // Tetrahedra are numbered 0 .. tet_slots() - 1; some slots are free (deleted and not reused).
+    uint32_t tet_slots() const { return static_cast<uint32_t>(vertices_.size() / 4); }
+    bool tet_is_free(uint32_t t) const { return vertices_[4 * size_t(t)] == FREE_MARK; }
+    bool tet_is_finite(uint32_t t) const;
+    uint32_t finite_tet_count() const { return finite_tets_; }
+
+    uint32_t tet_vertex(uint32_t t, uint32_t lv) const { return vertices_[4 * size_t(t) + lv]; }
+    // The tetrahedron across face lf of t (never NO_TET in a finished tetrahedralization).
+    uint32_t tet_adjacent(uint32_t t, uint32_t lf) const { return adjacency_[4 * size_t(t) + lf] >> 2; }
+    // The local index, in tet_adjacent(t, lf), of the face shared with t.
+    uint32_t tet_adjacent_face(uint32_t t, uint32_t lf) const { return adjacency_[4 * size_t(t) + lf] & 3u; }
+    // The local index of vertex v in t, or 4 when t does not contain v.
+    uint32_t tet_local_index(uint32_t t, uint32_t v) const;
+
+    // Some tetrahedron (finite or infinite) that contains vertex v.
+    uint32_t vertex_tet(uint32_t v) const { return vertex_tet_[v]; }
+
+    // Calls visit(apex, tet) once for each Delaunay triangle (u, v, apex) around the edge (u, v), in
+    // cyclic order around the edge, starting from `start`, a tetrahedron that contains u and v. `tet`
+    // is a tetrahedron that has the triangle as a face. apex may be INFINITE_VERTEX (a hull edge);
+    // skip those if only finite triangles are wanted. Returning false from visit stops the walk.
+    template <class Visit>
+    void for_each_triangle_around_edge(uint32_t start, uint32_t u, uint32_t v, Visit&& visit) const;
+
+    // Appends to `tets` every tetrahedron (finite or infinite) that contains vertex v. `tets` is
+    // cleared first. Returns false on allocation failure.
+    bool tets_around_vertex(uint32_t v, Array<uint32_t>& tets) const;
+
+    // Checks adjacency symmetry, the orientation of every finite tetrahedron, the local Delaunay
+    // property of every interior face (exact, with the same perturbation as construction), the
+    // convexity of the hull and the Euler characteristic. On failure writes a sentence into message.
+    bool validate(char* message, size_t message_capacity) const;
+
+    // How the predicates were decided during build.
+    PredicateCounters counters;
+
+    static constexpr uint32_t FREE_MARK = UINT32_MAX - 1;
+
+private:
+    const double* points_ = nullptr;
+    uint32_t vertex_count_ = 0;
+    uint32_t finite_tets_ = 0;
+    Array<uint32_t> vertices_;   // 4 per tetrahedron
+    Array<uint32_t> adjacency_;  // 4 per tetrahedron: neighbour << 2 | its local face
+    Array<uint32_t> vertex_tet_; // one incident tetrahedron per vertex
+    // Further private members (free list, walk state, ...) as the implementation needs.
+    friend class DelaunayBuilder;
+};
+
+template <class Visit>
+void Tetrahedralization::for_each_triangle_around_edge(uint32_t start, uint32_t u, uint32_t v, Visit&& visit) const {
+    // Each tetrahedron around the edge (u, v) has two more vertices; step across the face that holds u,
+    // v and the first of them (the face opposite the second) to the next tetrahedron around the edge.
+    uint32_t t = start;
+    uint32_t apex = NO_TET;  // the vertex shared with the previous tetrahedron, unknown at the start
+    do {
+        uint32_t others[2];
+        uint32_t n = 0;
+        for (uint32_t lv = 0; lv < 4; ++lv) {
+            const uint32_t w = tet_vertex(t, lv);
+            if (w != u && w != v) others[n++] = w;
+        }
+        // Continue away from the tetrahedron we came from: the face shared with it contains `apex`.
+        const uint32_t next_apex = (others[0] == apex) ? others[1] : others[0];
+        if (!visit(next_apex, t)) return;
+        const uint32_t across = (next_apex == others[0]) ? others[1] : others[0];
+        const uint32_t next = tet_adjacent(t, tet_local_index(t, across));
+        apex = next_apex;
+        t = next;
+    } while (t != start);
+}
+
+} // namespace dbrg
