@@ -1,2 +1,296 @@
 // The C ABI boundary: argument checks, status codes and result objects. The only file with extern "C".
-int dbrg_api_placeholder;
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <new>
+
+#include "core/point_input.h"
+#include "delaunay/point_conditioning.h"
+#include "pipeline.h"
+
+using namespace dbrg;
+
+namespace {
+
+const double PI = 3.14159265358979323846;
+
+// The part of dbrg_params that version 0.1 callers know; struct_size may not be smaller.
+const size_t PARAMS_V0_1_SIZE = sizeof(dbrg_params);
+
+void write_message(char* message, size_t capacity, const char* text) {
+    if (message && capacity > 0) snprintf(message, capacity, "%s", text);
+}
+
+// Copies the caller's parameters over the defaults, honouring a struct_size from an older header.
+dbrg_status read_params(const dbrg_params* given, dbrg_params& params, char* message, size_t capacity) {
+    dbrg_params_init(&params);
+    if (!given) return DBRG_OK;
+    const dbrg_status status = dbrg_params_validate(given, message, capacity);
+    if (status != DBRG_OK) return status;
+    memcpy(&params, given, given->struct_size < sizeof params ? given->struct_size : sizeof params);
+    params.struct_size = sizeof params;
+    return DBRG_OK;
+}
+
+// Allocates a result object of type T from the caller's allocator; T's first member is its Memory.
+template <class T>
+T* create_result(const dbrg_params& params) {
+    Memory bootstrap(params.allocator);
+    void* block = bootstrap.allocate(sizeof(T));
+    return block ? new (block) T(params.allocator) : nullptr;
+}
+
+template <class T>
+void destroy_result(T* result) {
+    if (!result) return;
+    Memory bootstrap(result->allocator_copy_valid ? &result->allocator_copy : nullptr);
+    result->~T();
+    bootstrap.release(result, sizeof(T));
+}
+
+} // namespace
+
+// Result objects hold their arrays in a Memory built on the caller's allocator, so they outlive the call.
+struct dbrg_mesh {
+    explicit dbrg_mesh(const dbrg_allocator* allocator)
+        : allocator_copy(allocator ? *allocator : dbrg_allocator{}),
+          allocator_copy_valid(allocator != nullptr),
+          memory(allocator),
+          surface(memory) {
+        memset(&stats, 0, sizeof stats);
+        stats.struct_size = sizeof stats;
+        message[0] = '\0';
+    }
+    dbrg_allocator allocator_copy;
+    bool allocator_copy_valid;
+    Memory memory;
+    SurfaceResult surface;
+    dbrg_status status = DBRG_OK;
+    uint32_t point_count = 0;
+    dbrg_stats stats;
+    char message[256];
+};
+
+struct dbrg_tetrahedralization {
+    explicit dbrg_tetrahedralization(const dbrg_allocator* allocator)
+        : allocator_copy(allocator ? *allocator : dbrg_allocator{}),
+          allocator_copy_valid(allocator != nullptr),
+          memory(allocator),
+          result(memory) {
+        message[0] = '\0';
+    }
+    dbrg_allocator allocator_copy;
+    bool allocator_copy_valid;
+    Memory memory;
+    TetrahedraResult result;
+    dbrg_status status = DBRG_OK;
+    char message[256];
+};
+
+extern "C" {
+
+DBRG_API uint32_t dbrg_version_number(void) { return DBRG_VERSION_NUMBER; }
+
+DBRG_API const char* dbrg_version_string(void) { return DBRG_VERSION_STRING; }
+
+DBRG_API const char* dbrg_status_string(dbrg_status status) {
+    switch (status) {
+    case DBRG_OK: return "DBRG_OK";
+    case DBRG_ERR_INVALID_ARGUMENT: return "DBRG_ERR_INVALID_ARGUMENT";
+    case DBRG_ERR_INVALID_PARAMETER: return "DBRG_ERR_INVALID_PARAMETER";
+    case DBRG_ERR_NON_FINITE_INPUT: return "DBRG_ERR_NON_FINITE_INPUT";
+    case DBRG_ERR_TOO_FEW_POINTS: return "DBRG_ERR_TOO_FEW_POINTS";
+    case DBRG_ERR_DEGENERATE_INPUT: return "DBRG_ERR_DEGENERATE_INPUT";
+    case DBRG_ERR_TOO_MANY_POINTS: return "DBRG_ERR_TOO_MANY_POINTS";
+    case DBRG_ERR_OUT_OF_MEMORY: return "DBRG_ERR_OUT_OF_MEMORY";
+    case DBRG_ERR_CANCELLED: return "DBRG_ERR_CANCELLED";
+    case DBRG_ERR_UNSUPPORTED: return "DBRG_ERR_UNSUPPORTED";
+    case DBRG_ERR_INTERNAL: return "DBRG_ERR_INTERNAL";
+    }
+    return "DBRG_STATUS_UNKNOWN";
+}
+
+DBRG_API dbrg_status dbrg_params_init(dbrg_params* params) {
+    if (!params) return DBRG_ERR_INVALID_ARGUMENT;
+    memset(params, 0, sizeof *params);
+    params->struct_size = sizeof *params;
+    params->sliver_angle = 5.0 * PI / 6.0;
+    params->boundary_factor = 3.0;
+    params->boundary_mean = DBRG_BOUNDARY_MEAN_LOCAL;
+    params->fill_holes = 1;
+    params->max_hole_edges = 64;
+    params->max_components = 64;
+    params->backend = DBRG_BACKEND_BUILTIN;
+    params->threads = 1;
+    return DBRG_OK;
+}
+
+DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* message, size_t capacity) {
+    char text[200];
+    write_message(message, capacity, "");
+    if (!params) {
+        write_message(message, capacity, "params is NULL");
+        return DBRG_ERR_INVALID_ARGUMENT;
+    }
+    if (params->struct_size < PARAMS_V0_1_SIZE || params->struct_size > sizeof(dbrg_params)) {
+        snprintf(text, sizeof text,
+                 "params->struct_size is %zu; this library (%s) knows sizes %zu to %zu: call dbrg_params_init first",
+                 params->struct_size, DBRG_VERSION_STRING, PARAMS_V0_1_SIZE, sizeof(dbrg_params));
+        write_message(message, capacity, text);
+        return DBRG_ERR_INVALID_ARGUMENT;
+    }
+    const char* problem = nullptr;
+    if (!(params->sliver_angle > PI / 2 && params->sliver_angle < PI)) {
+        problem = "sliver_angle must lie strictly between pi/2 and pi radians";
+    } else if (!(params->boundary_factor == 0 || (params->boundary_factor > 1 && isfinite(params->boundary_factor)))) {
+        problem = "boundary_factor must be 0 (off) or a finite number greater than 1";
+    } else if (params->boundary_mean != DBRG_BOUNDARY_MEAN_LOCAL && params->boundary_mean != DBRG_BOUNDARY_MEAN_GLOBAL) {
+        problem = "boundary_mean must be DBRG_BOUNDARY_MEAN_LOCAL or DBRG_BOUNDARY_MEAN_GLOBAL";
+    } else if (params->max_hole_edges < 3) {
+        problem = "max_hole_edges must be at least 3";
+    } else if (params->max_components < 1) {
+        problem = "max_components must be at least 1";
+    } else if (params->backend != DBRG_BACKEND_BUILTIN && params->backend != DBRG_BACKEND_TETGEN) {
+        problem = "backend must be DBRG_BACKEND_BUILTIN or DBRG_BACKEND_TETGEN";
+    }
+    if (problem) {
+        write_message(message, capacity, problem);
+        return DBRG_ERR_INVALID_PARAMETER;
+    }
+    return DBRG_OK;
+}
+
+DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_allocator* allocator, char* message,
+                                          size_t capacity) {
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.allocator = allocator;
+    Context context(params);
+    Array<double> xyz(context.memory);
+    dbrg_status status = read_points(points, context, xyz);
+    if (status == DBRG_OK) {
+        ConditionedPoints conditioned(context.memory);
+        status = condition_points(xyz.data(), points->count, context, conditioned);
+    }
+    write_message(message, capacity, status == DBRG_OK ? "" : context.message());
+    return status;
+}
+
+DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_params* given, dbrg_mesh** out_mesh) {
+    if (!out_mesh) return DBRG_ERR_INVALID_ARGUMENT;
+    *out_mesh = nullptr;
+    dbrg_params params;
+    char message[256];
+    const dbrg_status params_status = read_params(given, params, message, sizeof message);
+    // Invalid params may carry a bad allocator: report with the system allocator.
+    if (params_status != DBRG_OK) dbrg_params_init(&params);
+    dbrg_mesh* mesh = create_result<dbrg_mesh>(params);
+    if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
+    *out_mesh = mesh;
+    if (params_status != DBRG_OK) {
+        mesh->status = params_status;
+        snprintf(mesh->message, sizeof mesh->message, "%s", message);
+        return params_status;
+    }
+    Context context(params);
+    const double start = seconds_now();
+    dbrg_status status = reconstruct_surface(points, context, mesh->surface);
+    if (status != DBRG_OK) mesh->surface = SurfaceResult(mesh->memory);
+    mesh->status = status;
+    snprintf(mesh->message, sizeof mesh->message, "%s", status == DBRG_OK ? "" : context.message());
+    mesh->point_count = points && status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
+    mesh->stats = context.stats;
+    mesh->stats.seconds_total = seconds_now() - start;
+    mesh->stats.peak_bytes = context.memory.peak_bytes() + mesh->memory.bytes_in_use();
+    return status;
+}
+
+DBRG_API void dbrg_mesh_destroy(dbrg_mesh* mesh) { destroy_result(mesh); }
+
+DBRG_API dbrg_status dbrg_mesh_status(const dbrg_mesh* mesh) { return mesh ? mesh->status : DBRG_ERR_INVALID_ARGUMENT; }
+
+DBRG_API const char* dbrg_mesh_message(const dbrg_mesh* mesh) { return mesh ? mesh->message : ""; }
+
+DBRG_API uint32_t dbrg_mesh_point_count(const dbrg_mesh* mesh) { return mesh ? mesh->point_count : 0; }
+
+DBRG_API uint32_t dbrg_mesh_triangle_count(const dbrg_mesh* mesh) {
+    return mesh ? static_cast<uint32_t>(mesh->surface.triangles.size() / 3) : 0;
+}
+
+DBRG_API const uint32_t* dbrg_mesh_triangles(const dbrg_mesh* mesh) {
+    return mesh && !mesh->surface.triangles.empty() ? mesh->surface.triangles.data() : nullptr;
+}
+
+DBRG_API uint32_t dbrg_mesh_boundary_loop_count(const dbrg_mesh* mesh) {
+    return mesh && !mesh->surface.loop_offsets.empty() ? static_cast<uint32_t>(mesh->surface.loop_offsets.size() - 1) : 0;
+}
+
+DBRG_API const uint32_t* dbrg_mesh_boundary_loop(const dbrg_mesh* mesh, uint32_t loop, uint32_t* out_count) {
+    if (out_count) *out_count = 0;
+    if (loop >= dbrg_mesh_boundary_loop_count(mesh)) return nullptr;
+    const uint32_t begin = mesh->surface.loop_offsets[loop];
+    if (out_count) *out_count = mesh->surface.loop_offsets[loop + 1] - begin;
+    return mesh->surface.loop_vertices.data() + begin;
+}
+
+DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats) {
+    if (!mesh || !stats || stats->struct_size < sizeof(size_t)) return DBRG_ERR_INVALID_ARGUMENT;
+    const size_t size = stats->struct_size < sizeof mesh->stats ? stats->struct_size : sizeof mesh->stats;
+    const size_t caller_size = stats->struct_size;
+    memcpy(stats, &mesh->stats, size);
+    stats->struct_size = caller_size;
+    return DBRG_OK;
+}
+
+DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_params* given,
+                                         dbrg_tetrahedralization** out) {
+    if (!out) return DBRG_ERR_INVALID_ARGUMENT;
+    *out = nullptr;
+    dbrg_params params;
+    char message[256];
+    const dbrg_status params_status = read_params(given, params, message, sizeof message);
+    if (params_status != DBRG_OK) dbrg_params_init(&params);
+    dbrg_tetrahedralization* tets = create_result<dbrg_tetrahedralization>(params);
+    if (!tets) return DBRG_ERR_OUT_OF_MEMORY;
+    *out = tets;
+    if (params_status != DBRG_OK) {
+        tets->status = params_status;
+        snprintf(tets->message, sizeof tets->message, "%s", message);
+        return params_status;
+    }
+    Context context(params);
+    const dbrg_status status = tetrahedralize_points(points, context, tets->result);
+    if (status != DBRG_OK) tets->result = TetrahedraResult(tets->memory);
+    tets->status = status;
+    snprintf(tets->message, sizeof tets->message, "%s", status == DBRG_OK ? "" : context.message());
+    return status;
+}
+
+DBRG_API void dbrg_tetrahedralization_destroy(dbrg_tetrahedralization* tets) { destroy_result(tets); }
+
+DBRG_API dbrg_status dbrg_tetrahedralization_status(const dbrg_tetrahedralization* tets) {
+    return tets ? tets->status : DBRG_ERR_INVALID_ARGUMENT;
+}
+
+DBRG_API const char* dbrg_tetrahedralization_message(const dbrg_tetrahedralization* tets) {
+    return tets ? tets->message : "";
+}
+
+DBRG_API uint32_t dbrg_tetrahedralization_tet_count(const dbrg_tetrahedralization* tets) {
+    return tets ? static_cast<uint32_t>(tets->result.tets.size() / 4) : 0;
+}
+
+DBRG_API const uint32_t* dbrg_tetrahedralization_tets(const dbrg_tetrahedralization* tets) {
+    return tets && !tets->result.tets.empty() ? tets->result.tets.data() : nullptr;
+}
+
+DBRG_API const uint32_t* dbrg_tetrahedralization_adjacency(const dbrg_tetrahedralization* tets) {
+    return tets && !tets->result.adjacency.empty() ? tets->result.adjacency.data() : nullptr;
+}
+
+DBRG_API uint32_t dbrg_tetrahedralization_unique_point_count(const dbrg_tetrahedralization* tets) {
+    return tets ? tets->result.unique_points : 0;
+}
+
+} // extern "C"

@@ -237,8 +237,9 @@ DBRG_API const uint32_t* dbrg_mesh_triangles(const dbrg_mesh* mesh);
 /* Returns the number of boundary loops (open-surface borders and holes left open). */
 DBRG_API uint32_t dbrg_mesh_boundary_loop_count(const dbrg_mesh* mesh);
 
-/* Returns the point indices of boundary loop `loop` in order along the loop (the loop's edges run
- * opposite to the orientation of their triangles), and writes its length to *out_count.
+/* Returns the point indices of boundary loop `loop` in order along the loop (each step from one index
+ * to the next is a boundary edge in the direction its triangle traverses it), and writes its length
+ * to *out_count.
  * Returns NULL and writes 0 when mesh is NULL or loop is out of range. out_count may be NULL. */
 DBRG_API const uint32_t* dbrg_mesh_boundary_loop(const dbrg_mesh* mesh, uint32_t loop, uint32_t* out_count);
 

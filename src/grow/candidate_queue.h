@@ -1,0 +1,79 @@
+// Candidate queue: the priority queue Q of candidate triangles ct(e), most credible first (paper §3.1.3).
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+
+namespace dbrg {
+
+// The candidate triangle of one boundary half-edge u->v of S: the Delaunay triangle (v, u, apex).
+struct Candidate {
+    double smoothness;   // local smooth degree LSD: mean cosine of the dihedral angles with its neighbours in S
+    double radius;       // circumradius r(t)
+    uint32_t halfedge;   // the boundary half-edge of S it attaches to
+    uint32_t apex;       // its third vertex
+    uint32_t tet;        // a Delaunay tetrahedron that has it as a face
+    uint32_t version;    // the half-edge's version when the candidate was computed; older entries are stale
+    uint32_t postponed;  // 1 once it has been set aside for a retry
+};
+
+// Higher smoothness first, then the smaller circumradius, then vertex and half-edge ids, which depend only
+// on coordinates, so the order is deterministic.
+inline bool more_credible(const Candidate& a, const Candidate& b) {
+    if (a.smoothness != b.smoothness) return a.smoothness > b.smoothness;
+    if (a.radius != b.radius) return a.radius < b.radius;
+    if (a.apex != b.apex) return a.apex < b.apex;
+    return a.halfedge < b.halfedge;
+}
+
+// A binary max-heap of candidates over an Array.
+class CandidateQueue {
+public:
+    explicit CandidateQueue(Memory& memory) : heap_(memory) {}
+
+    bool empty() const { return heap_.empty(); }
+    size_t size() const { return heap_.size(); }
+
+    // Returns false on allocation failure.
+    bool push(const Candidate& candidate) {
+        if (!heap_.push_back(candidate)) return false;
+        size_t i = heap_.size() - 1;
+        while (i > 0) {
+            const size_t parent = (i - 1) / 2;
+            if (!more_credible(heap_[i], heap_[parent])) break;
+            swap_entries(i, parent);
+            i = parent;
+        }
+        return true;
+    }
+
+    Candidate pop() {
+        const Candidate top = heap_[0];
+        heap_[0] = heap_.back();
+        heap_.pop_back();
+        const size_t n = heap_.size();
+        size_t i = 0;
+        for (;;) {
+            const size_t left = 2 * i + 1, right = left + 1;
+            size_t best = i;
+            if (left < n && more_credible(heap_[left], heap_[best])) best = left;
+            if (right < n && more_credible(heap_[right], heap_[best])) best = right;
+            if (best == i) break;
+            swap_entries(i, best);
+            i = best;
+        }
+        return top;
+    }
+
+private:
+    void swap_entries(size_t i, size_t j) {
+        const Candidate t = heap_[i];
+        heap_[i] = heap_[j];
+        heap_[j] = t;
+    }
+
+    Array<Candidate> heap_;
+};
+
+} // namespace dbrg

@@ -1,0 +1,310 @@
+// Region growing: extracts an oriented manifold surface S from the Delaunay tetrahedralization by
+// attaching, one at a time, the most credible candidate triangle of S's boundary (paper §3 and §4).
+//
+// Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
+// reconstruction from unorganized points", Computer-Aided Design 37 (2005), sections 3 and 4.
+#include "grow/region_growing.h"
+
+#include <math.h>
+
+#include <algorithm>
+
+#include "core/status.h"
+#include "grow/triangle_geometry.h"
+#include "predicates/predicates.h"
+
+namespace dbrg {
+namespace {
+
+// A component grown from a later seed must reach this many faces to be kept: fewer are stray points
+// (noise, outliers) rather than a second object.
+const uint32_t MIN_SEEDED_COMPONENT_FACES = 16;
+
+// Orders the seed triangle so its normal points up (+z), falling back to +x, then +y, for vertical ones.
+void orient_upward(const Tetrahedralization& delaunay, uint32_t corners[3]) {
+    const Vec3 n = cross(load_vec3(delaunay.point(corners[1])) - load_vec3(delaunay.point(corners[0])),
+                         load_vec3(delaunay.point(corners[2])) - load_vec3(delaunay.point(corners[0])));
+    const bool flip = n.z != 0 ? n.z < 0 : (n.x != 0 ? n.x < 0 : n.y < 0);
+    if (flip) std::swap(corners[1], corners[2]);
+}
+
+} // namespace
+
+RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface, Context& context)
+    : delaunay_(delaunay),
+      surface_(surface),
+      context_(context),
+      cos_sliver_(cos(context.params.sliver_angle)),
+      queue_(context.memory),
+      postponed_(context.memory),
+      normals_(context.memory),
+      radii_(context.memory),
+      versions_(context.memory),
+      cause_(context.memory),
+      component_starts_(context.memory) {}
+
+dbrg_status RegionGrower::grow() {
+    const uint32_t n = delaunay_.vertex_count();
+    if (!surface_.reset(n) || !component_starts_.push_back(0)) return context_.fail_out_of_memory();
+
+    // Seeds are tried from the highest point down (§3.1.1); ties go to the lexicographically smaller point,
+    // which, as vertex ids are in lexicographic order, is the smaller id.
+    Array<uint32_t> by_height(context_.memory);
+    if (!by_height.resize(n)) return context_.fail_out_of_memory();
+    for (uint32_t v = 0; v < n; ++v) by_height[v] = v;
+    std::stable_sort(by_height.begin(), by_height.end(),
+                     [&](uint32_t a, uint32_t b) { return delaunay_.point(a)[2] > delaunay_.point(b)[2]; });
+
+    for (uint32_t i = 0; i < n && component_count() < context_.params.max_components; ++i) {
+        const uint32_t v = by_height[i];
+        if (surface_.is_used(v)) continue;
+        uint32_t corners[3], tet;
+        const bool seeded = find_seed(v, corners, tet);
+        if (context_.memory.failed()) return context_.fail_out_of_memory();
+        if (!seeded) continue;
+        const uint32_t first_face = surface_.face_count();
+        DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
+        DBRG_PROPAGATE(grow_component());
+        if (component_count() > 0 && surface_.face_count() - first_face < MIN_SEEDED_COMPONENT_FACES) {
+            remove_component(first_face);
+            continue;
+        }
+        if (!component_starts_.push_back(surface_.face_count())) return context_.fail_out_of_memory();
+        context_.stats.components = component_count();
+    }
+    context_.stats.vertices_used = used_vertices_;
+    return context_.report(DBRG_STAGE_GROW, 1.0);
+}
+
+// The smallest-circumradius Delaunay triangle at `vertex` whose corners are all unused (so it starts a
+// component of its own), oriented upward. With the open-surface test on, it must also not be much
+// larger than the triangles grown so far.
+bool RegionGrower::find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const {
+    Array<uint32_t> star(context_.memory);
+    if (!delaunay_.tets_around_vertex(vertex, star)) return false;
+    double best = HUGE_VAL;
+    for (uint32_t t : star) {
+        if (!delaunay_.tet_is_finite(t)) continue;
+        for (uint32_t lf = 0; lf < 4; ++lf) {
+            uint32_t face[3], k = 0;
+            for (uint32_t lv = 0; lv < 4; ++lv) {
+                if (lv != lf) face[k++] = delaunay_.tet_vertex(t, lv);
+            }
+            if (face[0] != vertex && face[1] != vertex && face[2] != vertex) continue;
+            if (surface_.is_used(face[0]) || surface_.is_used(face[1]) || surface_.is_used(face[2])) continue;
+            const double r = circumradius(delaunay_.point(face[0]), delaunay_.point(face[1]), delaunay_.point(face[2]));
+            std::sort(face, face + 3);
+            const bool better = r < best || (r == best && std::lexicographical_compare(face, face + 3, corners, corners + 3));
+            if (!better) continue;
+            best = r;
+            std::copy(face, face + 3, corners);
+            tet = t;
+        }
+    }
+    if (best == HUGE_VAL) return false;
+    const double factor = context_.params.boundary_factor;
+    if (factor > 0 && surface_.face_count() > 0 && best > factor * radius_sum_ / surface_.face_count()) return false;
+    orient_upward(delaunay_, corners);
+    return true;
+}
+
+dbrg_status RegionGrower::grow_component() {
+    // Postponed candidates get one more chance each time the queue runs dry.
+    for (;;) {
+        DBRG_PROPAGATE(drain_queue());
+        if (postponed_.empty()) return DBRG_OK;
+        for (const Candidate& c : postponed_) {
+            if (!queue_.push(c)) return context_.fail_out_of_memory();
+        }
+        postponed_.clear();
+    }
+}
+
+dbrg_status RegionGrower::drain_queue() {
+    dbrg_stats& stats = context_.stats;
+    uint32_t steps = 0;
+    while (!queue_.empty()) {
+        Candidate c = queue_.pop();
+        if (c.version != versions_[c.halfedge] || !surface_.is_boundary(c.halfedge)) continue;  // stale
+        ++stats.candidates_evaluated;
+        double smoothness;
+        bool apex_on_boundary;
+        const Verdict verdict = examine(c, smoothness, apex_on_boundary);
+        if (verdict != Verdict::valid) {
+            DBRG_PROPAGATE(reject(c, verdict, apex_on_boundary));
+            continue;
+        }
+        if (smoothness < c.smoothness) {
+            // S changed around it since it was queued and it is less credible now: queue it again.
+            c.smoothness = smoothness;
+            if (!queue_.push(c)) return context_.fail_out_of_memory();
+            continue;
+        }
+        if (!passes_boundary_test(c)) {
+            if (!c.postponed) {
+                c.postponed = 1;
+                if (!postponed_.push_back(c)) return context_.fail_out_of_memory();
+            } else {
+                ++stats.rejected_boundary;
+                cause_[c.halfedge] = BOUNDARY_OPEN;
+            }
+            continue;
+        }
+        const uint32_t h = c.halfedge;
+        DBRG_PROPAGATE(add_face(surface_.target(h), surface_.origin(h), c.apex, c.tet));
+        if (++steps % 1024 == 0) {
+            DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, double(used_vertices_) / delaunay_.vertex_count()));
+        }
+    }
+    return DBRG_OK;
+}
+
+dbrg_status RegionGrower::reject(Candidate c, Verdict verdict, bool apex_on_boundary) {
+    dbrg_stats& stats = context_.stats;
+    // A candidate whose apex is elsewhere on the boundary may become an ear once the fronts meet.
+    if (verdict == Verdict::bowtie && apex_on_boundary && !c.postponed) {
+        c.postponed = 1;
+        return postponed_.push_back(c) ? DBRG_OK : context_.fail_out_of_memory();
+    }
+    switch (verdict) {
+    case Verdict::edge_nonmanifold: ++stats.rejected_edge_nonmanifold; break;
+    case Verdict::orientation: ++stats.rejected_orientation; break;
+    case Verdict::bowtie: ++stats.rejected_bowtie; break;
+    case Verdict::dihedral: ++stats.rejected_dihedral; break;
+    case Verdict::valid: break;
+    }
+    // The edge moves on to its next-best candidate (§3.2.2).
+    return propose(c.halfedge, c.radius, c.apex);
+}
+
+// ct(e) (§3.1.2): among the Delaunay triangles around the edge of `halfedge`, other than its face in S,
+// the one of smallest circumradius whose dihedral angle with that face is below theta_sliver. Only
+// triangles that come after (after_radius, after_apex) in (radius, apex) order count, so that a rejected
+// candidate hands over to the next best.
+bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint32_t after_apex, Candidate& out) const {
+    const uint32_t face = Surface::face_of(halfedge);
+    const uint32_t u = surface_.origin(halfedge), v = surface_.target(halfedge);
+    const uint32_t opposite = surface_.target(Surface::next(halfedge));
+    const Vec3 face_normal = normals_[face];
+    const double* pu = delaunay_.point(u);
+    const double* pv = delaunay_.point(v);
+    bool found = false;
+    delaunay_.for_each_triangle_around_edge(surface_.face_tet(face), u, v, [&](uint32_t apex, uint32_t tet) {
+        if (apex == INFINITE_VERTEX || apex == opposite) return true;
+        const double* pw = delaunay_.point(apex);
+        const double r = circumradius(pu, pv, pw);
+        if (r < after_radius || (r == after_radius && apex <= after_apex)) return true;
+        if (found && (r > out.radius || (r == out.radius && apex > out.apex))) return true;
+        if (dihedral_cosine(face_normal, triangle_normal(pv, pu, pw)) <= cos_sliver_) return true;
+        out.radius = r;
+        out.apex = apex;
+        out.tet = tet;
+        found = true;
+        return true;
+    });
+    out.halfedge = halfedge;
+    return found;
+}
+
+// The topological and geometrical examinations of §3.2.1 for attaching (v, u, apex) to the boundary
+// half-edge u->v: no edge with a third face, compatible orientation, no neck vertex, and dihedral angles
+// with every neighbour in S below theta_sliver. Also computes the local smooth degree (§3.1.3) over the
+// neighbours the triangle would have.
+RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness, bool& apex_on_boundary) const {
+    const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge), w = c.apex;
+    const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(w));
+    double cos_sum = dihedral_cosine(normal, normals_[Surface::face_of(c.halfedge)]);
+    uint32_t neighbours = 1;
+    apex_on_boundary = surface_.is_boundary_vertex(w);
+    smoothness = cos_sum;
+    if (cos_sum <= cos_sliver_) return Verdict::dihedral;
+    if (!surface_.is_used(w)) return Verdict::valid;
+
+    // The new face has half-edges u->w and w->v; S may hold neither, or their reverses on its boundary.
+    const uint32_t new_edges[2][2] = {{u, w}, {w, v}};
+    bool shares_edge = false;
+    for (const auto& edge : new_edges) {
+        const uint32_t same = surface_.find_halfedge(edge[0], edge[1]);
+        if (same != NO_HALFEDGE) return surface_.is_boundary(same) ? Verdict::orientation : Verdict::edge_nonmanifold;
+        const uint32_t reverse = surface_.find_halfedge(edge[1], edge[0]);
+        if (reverse == NO_HALFEDGE) continue;
+        if (!surface_.is_boundary(reverse)) return Verdict::edge_nonmanifold;
+        const double cos_theta = dihedral_cosine(normal, normals_[Surface::face_of(reverse)]);
+        if (cos_theta <= cos_sliver_) return Verdict::dihedral;
+        cos_sum += cos_theta;
+        ++neighbours;
+        shares_edge = true;
+    }
+    smoothness = cos_sum / neighbours;
+    // Touching S only at the apex would pinch two fans together at it.
+    return shares_edge ? Verdict::valid : Verdict::bowtie;
+}
+
+// §4: a candidate much larger than the triangles of S spans an opening of an open surface.
+bool RegionGrower::passes_boundary_test(const Candidate& c) const {
+    const double factor = context_.params.boundary_factor;
+    if (factor == 0) return true;
+    const double mean = context_.params.boundary_mean == DBRG_BOUNDARY_MEAN_GLOBAL
+                            ? radius_sum_ / surface_.face_count()
+                            : local_mean_radius(c.halfedge);
+    return c.radius <= factor * mean;
+}
+
+// Mean circumradius of the faces around both ends of the edge.
+double RegionGrower::local_mean_radius(uint32_t halfedge) const {
+    double sum = 0;
+    uint32_t count = 0;
+    const uint32_t ends[2] = {surface_.origin(halfedge), surface_.target(halfedge)};
+    for (uint32_t end : ends) {
+        const uint32_t start = surface_.vertex_halfedge(end);
+        uint32_t h = start;
+        do {
+            sum += radii_[Surface::face_of(h)];
+            ++count;
+            h = surface_.rotate(h);
+        } while (h != NO_HALFEDGE && h != start);
+    }
+    return sum / count;
+}
+
+// Computes the next candidate of a boundary half-edge and queues it; without one, the edge stays open.
+dbrg_status RegionGrower::propose(uint32_t halfedge, double after_radius, uint32_t after_apex) {
+    Candidate c;
+    ++versions_[halfedge];
+    if (!select_candidate(halfedge, after_radius, after_apex, c)) return DBRG_OK;
+    bool apex_on_boundary;
+    examine(c, c.smoothness, apex_on_boundary);
+    c.version = versions_[halfedge];
+    c.postponed = 0;
+    return queue_.push(c) ? DBRG_OK : context_.fail_out_of_memory();
+}
+
+// Inserts face (a, b, c) into S and queues candidates for its new boundary edges (§3.2.2).
+dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
+    for (uint32_t corner : {a, b, c}) used_vertices_ += surface_.is_used(corner) ? 0 : 1;
+    const uint32_t f = surface_.add_face(a, b, c, tet);
+    if (f == NO_FACE) return context_.fail_out_of_memory();
+    const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
+    const double r = circumradius(pa, pb, pc);
+    radius_sum_ += r;
+    if (!normals_.push_back(triangle_normal(pa, pb, pc)) || !radii_.push_back(r) ||
+        !versions_.resize(versions_.size() + 3, 0) || !cause_.resize(cause_.size() + 3, BOUNDARY_UNRESOLVED)) {
+        return context_.fail_out_of_memory();
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, -HUGE_VAL, 0));
+    }
+    return DBRG_OK;
+}
+
+// Undoes a component that stayed too small; its faces are the last ones and touch no other component.
+void RegionGrower::remove_component(uint32_t first_face) {
+    for (uint32_t f = first_face; f < surface_.face_count(); ++f) radius_sum_ -= radii_[f];
+    used_vertices_ -= surface_.truncate(first_face);
+    normals_.shrink(first_face);
+    radii_.shrink(first_face);
+    versions_.shrink(3 * size_t(first_face));
+    cause_.shrink(3 * size_t(first_face));
+}
+
+} // namespace dbrg

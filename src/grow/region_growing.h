@@ -1,0 +1,71 @@
+// Region growing: extracts an oriented manifold surface S from the Delaunay tetrahedralization by
+// attaching, one at a time, the most credible candidate triangle of S's boundary (paper §3 and §4).
+//
+// Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
+// reconstruction from unorganized points", Computer-Aided Design 37 (2005), sections 3 and 4.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+#include "core/vec3.h"
+#include "delaunay/tetrahedralization.h"
+#include "grow/candidate_queue.h"
+#include "surface/surface.h"
+
+namespace dbrg {
+
+// Why a half-edge of S is still on the boundary when growing ends.
+enum BoundaryCause : uint8_t {
+    BOUNDARY_UNRESOLVED = 0,  // every candidate was invalid (§3.2.1): a hole, for hole filling (§5)
+    BOUNDARY_OPEN = 1,        // the open-surface test (§4) refused its candidate: a real border
+};
+
+class RegionGrower {
+public:
+    RegionGrower(const Tetrahedralization& delaunay, Surface& surface, Context& context);
+
+    // Grows S from the highest point, then from further seeds while unused points can start a
+    // component of their own (up to params.max_components). Fills the growing fields of context.stats.
+    dbrg_status grow();
+
+    BoundaryCause boundary_cause(uint32_t halfedge) const { return static_cast<BoundaryCause>(cause_[halfedge]); }
+    // Face ids [component_start(i), component_start(i + 1)) form component i; the last start is the face count.
+    uint32_t component_count() const { return static_cast<uint32_t>(component_starts_.size()) - 1; }
+    uint32_t component_start(uint32_t i) const { return component_starts_[i]; }
+    const Vec3& face_normal(uint32_t f) const { return normals_[f]; }
+    double face_radius(uint32_t f) const { return radii_[f]; }
+
+private:
+    enum class Verdict { valid, edge_nonmanifold, orientation, bowtie, dihedral };
+
+    dbrg_status grow_component();
+    dbrg_status drain_queue();
+    bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
+    bool select_candidate(uint32_t halfedge, double after_radius, uint32_t after_apex, Candidate& out) const;
+    Verdict examine(const Candidate& candidate, double& smoothness, bool& apex_on_boundary) const;
+    bool passes_boundary_test(const Candidate& candidate) const;
+    double local_mean_radius(uint32_t halfedge) const;
+    dbrg_status propose(uint32_t halfedge, double after_radius, uint32_t after_apex);
+    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
+    dbrg_status reject(Candidate candidate, Verdict verdict, bool apex_on_boundary);
+    void remove_component(uint32_t first_face);
+
+    const Tetrahedralization& delaunay_;
+    Surface& surface_;
+    Context& context_;
+    double cos_sliver_;
+
+    CandidateQueue queue_;
+    Array<Candidate> postponed_;     // set aside once, retried when the queue runs dry
+    Array<Vec3> normals_;            // per face
+    Array<double> radii_;            // per face
+    Array<uint32_t> versions_;       // per half-edge: bumped whenever a new candidate is computed
+    Array<uint8_t> cause_;           // per half-edge: BoundaryCause
+    Array<uint32_t> component_starts_;
+    double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
+    uint32_t used_vertices_ = 0;
+};
+
+} // namespace dbrg

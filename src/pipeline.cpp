@@ -1,0 +1,137 @@
+// Pipeline: runs the stages of one call in order — read points, condition, tetrahedralize, grow, fill
+// holes — and hands the results over in the caller's point indexing.
+#include "pipeline.h"
+
+#include "core/point_input.h"
+#include "core/status.h"
+#include "delaunay/point_conditioning.h"
+#include "delaunay/tetrahedralization.h"
+#include "grow/region_growing.h"
+#include "surface/surface.h"
+
+namespace dbrg {
+namespace {
+
+// Reads, checks and conditions the caller's points; the raw copy is released before returning.
+dbrg_status prepare_points(const dbrg_points* points, Context& context, ConditionedPoints& conditioned) {
+    const double start = seconds_now();
+    DBRG_PROPAGATE(context.report(DBRG_STAGE_VALIDATE, 0.0));
+    Array<double> xyz(context.memory);
+    DBRG_PROPAGATE(read_points(points, context, xyz));
+    DBRG_PROPAGATE(condition_points(xyz.data(), points->count, context, conditioned));
+    context.stats.input_points = static_cast<uint32_t>(points->count);
+    context.stats.unique_points = conditioned.size();
+    context.stats.duplicates_merged = conditioned.duplicates_merged;
+    context.stats.seconds_validate = seconds_now() - start;
+    return context.report(DBRG_STAGE_VALIDATE, 1.0);
+}
+
+dbrg_status build_tetrahedralization(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
+    if (context.params.backend != DBRG_BACKEND_BUILTIN) {
+        return context.fail(DBRG_ERR_UNSUPPORTED, "the TetGen backend is not part of this build (configure with -Dtetgen=enabled)");
+    }
+    return delaunay.build(conditioned.coordinates.data(), conditioned.size(), context);
+}
+
+// A closed component has no boundary half-edge; it faces outward when its signed volume is positive.
+bool component_faces_inward(const Surface& surface, const Tetrahedralization& delaunay, uint32_t first, uint32_t end) {
+    double volume = 0;
+    for (uint32_t f = first; f < end; ++f) {
+        for (uint32_t i = 0; i < 3; ++i) {
+            if (surface.is_boundary(3 * f + i)) return false;
+        }
+        const Vec3 a = load_vec3(delaunay.point(surface.corner(f, 0)));
+        const Vec3 b = load_vec3(delaunay.point(surface.corner(f, 1)));
+        const Vec3 c = load_vec3(delaunay.point(surface.corner(f, 2)));
+        volume += dot(a, cross(b, c));
+    }
+    return volume < 0;
+}
+
+// Triangles in the caller's indices, closed components turned outward, and the boundary loops.
+dbrg_status emit_surface(const Surface& surface, const RegionGrower& grower, const Tetrahedralization& delaunay,
+                         const ConditionedPoints& conditioned, Context& context, SurfaceResult& result) {
+    const uint32_t faces = surface.face_count();
+    if (!result.triangles.reserve(3 * size_t(faces))) return context.fail_out_of_memory();
+    for (uint32_t k = 0; k < grower.component_count(); ++k) {
+        const uint32_t first = grower.component_start(k), end = grower.component_start(k + 1);
+        const bool flip = component_faces_inward(surface, delaunay, first, end);
+        for (uint32_t f = first; f < end; ++f) {
+            result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
+            result.triangles.push_back(conditioned.input_index[surface.corner(f, flip ? 2 : 1)]);
+            result.triangles.push_back(conditioned.input_index[surface.corner(f, flip ? 1 : 2)]);
+        }
+    }
+    // Boundary loops: from a boundary half-edge u->v, the loop continues with v's outgoing boundary half-edge.
+    Array<uint8_t> visited(context.memory);
+    if (!visited.resize(3 * size_t(faces), 0) || !result.loop_offsets.push_back(0)) return context.fail_out_of_memory();
+    uint32_t boundary_edges = 0;
+    for (uint32_t start = 0; start < 3 * faces; ++start) {
+        if (!surface.is_boundary(start) || visited[start]) continue;
+        uint32_t h = start;
+        do {
+            visited[h] = 1;
+            ++boundary_edges;
+            if (!result.loop_vertices.push_back(conditioned.input_index[surface.origin(h)])) return context.fail_out_of_memory();
+            h = surface.vertex_halfedge(surface.target(h));
+        } while (h != start);
+        if (!result.loop_offsets.push_back(static_cast<uint32_t>(result.loop_vertices.size()))) {
+            return context.fail_out_of_memory();
+        }
+    }
+    context.stats.triangles = faces;
+    context.stats.boundary_edges = boundary_edges;
+    context.stats.boundary_loops = static_cast<uint32_t>(result.loop_offsets.size() - 1);
+    return DBRG_OK;
+}
+
+} // namespace
+
+dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, SurfaceResult& result) {
+    ConditionedPoints conditioned(context.memory);
+    DBRG_PROPAGATE(prepare_points(points, context, conditioned));
+
+    Tetrahedralization delaunay(context.memory);
+    DBRG_PROPAGATE(build_tetrahedralization(conditioned, context, delaunay));
+
+    double start = seconds_now();
+    Surface surface(context.memory);
+    RegionGrower grower(delaunay, surface, context);
+    DBRG_PROPAGATE(grower.grow());
+    context.stats.seconds_grow = seconds_now() - start;
+
+    start = seconds_now();
+    DBRG_PROPAGATE(emit_surface(surface, grower, delaunay, conditioned, context, result));
+    context.stats.seconds_output = seconds_now() - start;
+    return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
+}
+
+dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, TetrahedraResult& result) {
+    ConditionedPoints conditioned(context.memory);
+    DBRG_PROPAGATE(prepare_points(points, context, conditioned));
+    Tetrahedralization delaunay(context.memory);
+    DBRG_PROPAGATE(build_tetrahedralization(conditioned, context, delaunay));
+
+    // Finite tetrahedra are numbered in slot order; infinite and free slots get no number.
+    const uint32_t slots = delaunay.tet_slots();
+    Array<uint32_t> number(context.memory);
+    if (!number.resize(slots, DBRG_NO_NEIGHBOR)) return context.fail_out_of_memory();
+    uint32_t finite = 0;
+    for (uint32_t t = 0; t < slots; ++t) {
+        if (!delaunay.tet_is_free(t) && delaunay.tet_is_finite(t)) number[t] = finite++;
+    }
+    if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {
+        return context.fail_out_of_memory();
+    }
+    for (uint32_t t = 0; t < slots; ++t) {
+        if (number[t] == DBRG_NO_NEIGHBOR) continue;
+        for (uint32_t i = 0; i < 4; ++i) {
+            result.tets[4 * size_t(number[t]) + i] = conditioned.input_index[delaunay.tet_vertex(t, i)];
+            result.adjacency[4 * size_t(number[t]) + i] = number[delaunay.tet_adjacent(t, i)];
+        }
+    }
+    result.unique_points = conditioned.size();
+    return context.report(DBRG_STAGE_OUTPUT, 1.0);
+}
+
+} // namespace dbrg

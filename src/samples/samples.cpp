@@ -1,0 +1,199 @@
+// Sample point sets on known surfaces: random points spread by area, thinned to a Poisson-disk set so the
+// spacing is even, with the spacing tuned until the count is close to what was asked.
+#include "samples/samples.h"
+
+#include <cmath>
+#include <unordered_map>
+
+namespace dbrg::samples {
+namespace {
+
+const double PI = 3.14159265358979323846;
+
+// splitmix64: small, fast, and the same on every platform.
+class Random {
+public:
+    explicit Random(uint64_t seed) : state_(seed) {}
+    uint64_t next() {
+        uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    // Uniform in [lo, hi).
+    double uniform(double lo = 0, double hi = 1) { return lo + (hi - lo) * double(next() >> 11) * 0x1.0p-53; }
+
+private:
+    uint64_t state_;
+};
+
+struct Point {
+    double x, y, z;
+};
+
+Point on_unit_sphere(Random& random) {
+    const double z = random.uniform(-1, 1), a = random.uniform(0, 2 * PI), r = std::sqrt(1 - z * z);
+    return {r * std::cos(a), r * std::sin(a), z};
+}
+
+// A tube around Bernoulli's lemniscate; the two lobes meet in the middle, which makes two handles.
+double double_torus_field(double x, double y, double z) {
+    const double lemniscate = (x * x + y * y) * (x * x + y * y) - x * x + y * y;
+    return lemniscate * lemniscate + z * z - 0.01;
+}
+
+// Newton steps onto the zero set of the double torus field; false when the point does not converge.
+bool project_to_double_torus(Point& p) {
+    for (int step = 0; step < 30; ++step) {
+        const double h = 1e-7;
+        const double f = double_torus_field(p.x, p.y, p.z);
+        const double gx = (double_torus_field(p.x + h, p.y, p.z) - double_torus_field(p.x - h, p.y, p.z)) / (2 * h);
+        const double gy = (double_torus_field(p.x, p.y + h, p.z) - double_torus_field(p.x, p.y - h, p.z)) / (2 * h);
+        const double gz = (double_torus_field(p.x, p.y, p.z + h) - double_torus_field(p.x, p.y, p.z - h)) / (2 * h);
+        const double g2 = gx * gx + gy * gy + gz * gz;
+        if (g2 < 1e-20) return false;
+        p = {p.x - f * gx / g2, p.y - f * gy / g2, p.z - f * gz / g2};
+        if (std::fabs(f) < 1e-13) return true;
+    }
+    return false;
+}
+
+// One random point on the shape, roughly uniform by area (thinning evens out what is left).
+bool raw_point(Shape shape, Random& random, Point& p) {
+    switch (shape) {
+    case Shape::sphere:
+        p = on_unit_sphere(random);
+        return true;
+    case Shape::bumpy_sphere: {
+        const Point d = on_unit_sphere(random);
+        const double r = 1 + 0.12 * std::sin(5 * d.x) * std::sin(5 * d.y) * std::sin(5 * d.z);
+        p = {r * d.x, r * d.y, r * d.z};
+        return true;
+    }
+    case Shape::hemisphere:
+        p = on_unit_sphere(random);
+        p.z = std::fabs(p.z);
+        return true;
+    case Shape::torus: {
+        const double major = 1, minor = 0.35;
+        const double u = random.uniform(0, 2 * PI), v = random.uniform(0, 2 * PI);
+        // Keep the point with probability proportional to the area element.
+        if (random.uniform(0, major + minor) > major + minor * std::cos(v)) return false;
+        const double ring = major + minor * std::cos(v);
+        p = {ring * std::cos(u), ring * std::sin(u), minor * std::sin(v)};
+        return true;
+    }
+    case Shape::double_torus:
+        p = {random.uniform(-1.2, 1.2), random.uniform(-0.6, 0.6), random.uniform(-0.15, 0.15)};
+        return project_to_double_torus(p);
+    case Shape::open_cylinder: {
+        const double a = random.uniform(0, 2 * PI);
+        p = {0.5 * std::cos(a), 0.5 * std::sin(a), random.uniform(-1, 1)};
+        return true;
+    }
+    case Shape::saddle: {
+        const double x = random.uniform(-1, 1), y = random.uniform(-1, 1);
+        if (random.uniform() * 9 > 1 + 4 * x * x + 4 * y * y) return false;  // area element of the graph
+        p = {x, y, x * x - y * y};
+        return true;
+    }
+    case Shape::cube: {
+        const int face = int(random.next() % 6);
+        const double s = random.uniform(-1, 1), t = random.uniform(-1, 1), side = face % 2 ? 1.0 : -1.0;
+        p = face < 2 ? Point{side, s, t} : face < 4 ? Point{s, side, t} : Point{s, t, side};
+        return true;
+    }
+    }
+    return false;
+}
+
+// Keeps, in order, each point at least `spacing` away from every point kept before it.
+std::vector<Point> thin(const std::vector<Point>& raw, double spacing) {
+    std::unordered_map<uint64_t, uint32_t> first_in_cell;
+    std::vector<uint32_t> next_in_cell;
+    std::vector<Point> kept;
+    auto cell_key = [](int64_t i, int64_t j, int64_t k) {
+        return (uint64_t(i) & 0x1fffff) << 42 | (uint64_t(j) & 0x1fffff) << 21 | (uint64_t(k) & 0x1fffff);
+    };
+    for (const Point& p : raw) {
+        const int64_t ci = int64_t(std::floor(p.x / spacing)), cj = int64_t(std::floor(p.y / spacing)),
+                      ck = int64_t(std::floor(p.z / spacing));
+        bool too_close = false;
+        for (int64_t i = ci - 1; i <= ci + 1 && !too_close; ++i) {
+            for (int64_t j = cj - 1; j <= cj + 1 && !too_close; ++j) {
+                for (int64_t k = ck - 1; k <= ck + 1 && !too_close; ++k) {
+                    auto found = first_in_cell.find(cell_key(i, j, k));
+                    for (uint32_t q = found == first_in_cell.end() ? UINT32_MAX : found->second; q != UINT32_MAX;
+                         q = next_in_cell[q]) {
+                        const Point& o = kept[q];
+                        const double dx = o.x - p.x, dy = o.y - p.y, dz = o.z - p.z;
+                        if (dx * dx + dy * dy + dz * dz < spacing * spacing) {
+                            too_close = true;
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        if (too_close) continue;
+        const uint64_t key = cell_key(ci, cj, ck);
+        auto head = first_in_cell.find(key);
+        next_in_cell.push_back(head == first_in_cell.end() ? UINT32_MAX : head->second);
+        first_in_cell[key] = uint32_t(kept.size());
+        kept.push_back(p);
+    }
+    return kept;
+}
+
+} // namespace
+
+ShapeFacts facts(Shape shape) {
+    switch (shape) {
+    case Shape::sphere: return {"sphere", 0, 0};
+    case Shape::torus: return {"torus", 1, 0};
+    case Shape::double_torus: return {"double_torus", 2, 0};
+    case Shape::bumpy_sphere: return {"bumpy_sphere", 0, 0};
+    case Shape::hemisphere: return {"hemisphere", 0, 1};
+    case Shape::open_cylinder: return {"open_cylinder", 0, 2};
+    case Shape::saddle: return {"saddle", 0, 1};
+    case Shape::cube: return {"cube", 0, 0};
+    }
+    return {"unknown", 0, 0};
+}
+
+bool shape_from_name(std::string_view name, Shape& shape) {
+    for (Shape s : {Shape::sphere, Shape::torus, Shape::double_torus, Shape::bumpy_sphere, Shape::hemisphere,
+                    Shape::open_cylinder, Shape::saddle, Shape::cube}) {
+        if (name == facts(s).name) {
+            shape = s;
+            return true;
+        }
+    }
+    return false;
+}
+
+std::vector<double> sample(Shape shape, size_t count, uint64_t seed) {
+    Random random(seed);
+    std::vector<Point> raw;
+    const size_t oversampling = 6;
+    raw.reserve(oversampling * count);
+    while (raw.size() < oversampling * count) {
+        Point p;
+        if (raw_point(shape, random, p)) raw.push_back(p);
+    }
+    // The number of points kept falls as the square of the spacing: a few corrections home in on `count`.
+    double spacing = 2.0 / std::sqrt(double(count));
+    std::vector<Point> kept = thin(raw, spacing);
+    for (int round = 0; round < 4 && !kept.empty(); ++round) {
+        const double ratio = double(kept.size()) / double(count);
+        if (std::fabs(ratio - 1) < 0.02) break;
+        spacing *= std::sqrt(ratio);
+        kept = thin(raw, spacing);
+    }
+    std::vector<double> xyz;
+    xyz.reserve(3 * kept.size());
+    for (const Point& p : kept) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    return xyz;
+}
+
+} // namespace dbrg::samples

@@ -1,0 +1,370 @@
+/* The whole public API exercised from C99: versions, statuses, parameters, input checks, reconstruction,
+ * the tetrahedralization, the caller's allocator (counted, and failing on purpose) and cancellation. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dbrg/dbrg.h"
+
+static int checks_passed = 0;
+static int checks_failed = 0;
+
+#define CHECK(condition)                                                  \
+    do {                                                                  \
+        if (condition) {                                                  \
+            ++checks_passed;                                              \
+        } else {                                                          \
+            ++checks_failed;                                              \
+            fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #condition); \
+        }                                                                 \
+    } while (0)
+
+/* An allocator that counts live blocks and bytes and can refuse the k-th request. */
+typedef struct counting_allocator {
+    long live_blocks;
+    size_t live_bytes;
+    long requests;
+    long fail_at; /* 0: never */
+} counting_allocator;
+
+static int refuse(counting_allocator* a) {
+    ++a->requests;
+    return a->fail_at != 0 && a->requests == a->fail_at;
+}
+
+static void* counting_allocate(void* user, size_t size) {
+    counting_allocator* a = (counting_allocator*)user;
+    void* block;
+    if (refuse(a)) return NULL;
+    block = malloc(size);
+    if (block) {
+        ++a->live_blocks;
+        a->live_bytes += size;
+    }
+    return block;
+}
+
+static void* counting_reallocate(void* user, void* block, size_t old_size, size_t new_size) {
+    counting_allocator* a = (counting_allocator*)user;
+    void* moved;
+    if (refuse(a)) return NULL;
+    moved = realloc(block, new_size);
+    if (moved) a->live_bytes = a->live_bytes - old_size + new_size;
+    return moved;
+}
+
+static void counting_deallocate(void* user, void* block, size_t size) {
+    counting_allocator* a = (counting_allocator*)user;
+    if (!block) return;
+    --a->live_blocks;
+    a->live_bytes -= size;
+    free(block);
+}
+
+/* n points spread evenly over the unit sphere (a Fibonacci spiral). */
+static double* sphere_points(size_t n) {
+    double* xyz = (double*)malloc(3 * n * sizeof(double));
+    const double golden = 3.14159265358979323846 * (3.0 - sqrt(5.0));
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        const double z = 1.0 - (2.0 * (double)i + 1.0) / (double)n;
+        const double r = sqrt(1.0 - z * z);
+        xyz[3 * i + 0] = r * cos(golden * (double)i);
+        xyz[3 * i + 1] = r * sin(golden * (double)i);
+        xyz[3 * i + 2] = z;
+    }
+    return xyz;
+}
+
+static dbrg_points as_points(const void* data, size_t count, size_t stride, dbrg_scalar_type type) {
+    dbrg_points p;
+    p.data = data;
+    p.count = count;
+    p.stride_bytes = stride;
+    p.type = type;
+    return p;
+}
+
+static void test_versions_and_statuses(void) {
+    int s;
+    CHECK(dbrg_version_number() == DBRG_VERSION_NUMBER);
+    CHECK(strcmp(dbrg_version_string(), DBRG_VERSION_STRING) == 0);
+    CHECK(strcmp(dbrg_status_string(DBRG_OK), "DBRG_OK") == 0);
+    CHECK(strcmp(dbrg_status_string(DBRG_ERR_NON_FINITE_INPUT), "DBRG_ERR_NON_FINITE_INPUT") == 0);
+    for (s = DBRG_OK; s <= DBRG_ERR_INTERNAL; ++s) CHECK(strncmp(dbrg_status_string((dbrg_status)s), "DBRG_", 5) == 0);
+    CHECK(strcmp(dbrg_status_string((dbrg_status)999), "DBRG_STATUS_UNKNOWN") == 0);
+}
+
+static void test_params(void) {
+    dbrg_params params;
+    char message[256];
+    CHECK(dbrg_params_init(NULL) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_params_init(&params) == DBRG_OK);
+    CHECK(params.struct_size == sizeof params);
+    CHECK(fabs(params.sliver_angle - 5.0 * 3.14159265358979323846 / 6.0) < 1e-12);
+    CHECK(params.fill_holes == 1);
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_OK);
+    CHECK(message[0] == '\0');
+    CHECK(dbrg_params_validate(NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+
+    params.sliver_angle = 4.0;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+    CHECK(strstr(message, "sliver_angle") != NULL);
+    dbrg_params_init(&params);
+    params.boundary_factor = 0.5;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+    CHECK(strstr(message, "boundary_factor") != NULL);
+    params.boundary_factor = NAN;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+    dbrg_params_init(&params);
+    params.max_hole_edges = 2;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+    CHECK(strstr(message, "max_hole_edges") != NULL);
+    dbrg_params_init(&params);
+    params.backend = (dbrg_backend)7;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+    dbrg_params_init(&params);
+    params.struct_size = 8;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(message, "struct_size") != NULL);
+    /* A message buffer too small is truncated, never overrun. */
+    CHECK(dbrg_params_validate(&params, message, 4) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(strlen(message) == 3);
+}
+
+static void test_point_checks(void) {
+    char message[256];
+    double xyz[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+    float xyz_f[4 * 4] = {0, 0, 0, 9, 1, 0, 0, 9, 0, 1, 0, 9, 0, 0, 1, 9};
+    double coplanar[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 3, 0};
+    double duplicates[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0};
+    dbrg_points p;
+
+    CHECK(dbrg_points_validate(NULL, NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    p = as_points(xyz, 5, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_OK);
+    p = as_points(xyz_f, 4, 4 * sizeof(float), DBRG_FLOAT32);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_OK);
+    p = as_points(xyz, 5, 2 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(message, "stride") != NULL);
+    p = as_points(NULL, 5, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    p = as_points(xyz, 5, 3 * sizeof(double), (dbrg_scalar_type)5);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    p = as_points(xyz, (size_t)DBRG_MAX_POINTS + 1, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_TOO_MANY_POINTS);
+    p = as_points(xyz, 1000, (size_t)-1 / 100, DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_TOO_MANY_POINTS);
+    p = as_points(xyz, 3, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_TOO_FEW_POINTS);
+
+    xyz[3 * 3 + 1] = NAN;
+    p = as_points(xyz, 5, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_NON_FINITE_INPUT);
+    CHECK(strstr(message, "point 3") != NULL);
+    CHECK(strstr(message, "NaN") != NULL);
+    xyz[3 * 3 + 1] = INFINITY;
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_NON_FINITE_INPUT);
+    CHECK(strstr(message, "infinite") != NULL);
+
+    p = as_points(coplanar, 5, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_DEGENERATE_INPUT);
+    CHECK(strstr(message, "coplanar") != NULL);
+    p = as_points(duplicates, 5, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_TOO_FEW_POINTS);
+    CHECK(strstr(message, "3 distinct") != NULL);
+}
+
+/* Every directed edge at most once (orientation consistent, at most two faces an edge), indices in range. */
+static int is_oriented_manifold(const uint32_t* triangles, uint32_t count, uint32_t points) {
+    uint64_t* directed = (uint64_t*)malloc(3 * (size_t)count * sizeof(uint64_t) + 1);
+    uint32_t t, i, j;
+    int ok = 1;
+    for (t = 0; t < count; ++t) {
+        for (i = 0; i < 3; ++i) {
+            const uint32_t a = triangles[3 * t + i], b = triangles[3 * t + (i + 1) % 3];
+            if (a >= points || b >= points || a == b) ok = 0;
+            directed[3 * t + i] = (uint64_t)a << 32 | b;
+        }
+    }
+    for (i = 0; ok && i < 3 * count; ++i) {
+        for (j = i + 1; j < 3 * count; ++j) {
+            if (directed[i] == directed[j]) ok = 0;
+        }
+    }
+    free(directed);
+    return ok;
+}
+
+static int count_progress_calls;
+static int cancel_after;
+
+static int progress(void* user, dbrg_stage stage, double fraction) {
+    (void)user;
+    (void)stage;
+    if (fraction < 0 || fraction > 1) return 1;
+    ++count_progress_calls;
+    return cancel_after > 0 && count_progress_calls >= cancel_after;
+}
+
+static void test_reconstruction(void) {
+    const size_t n = 400;
+    double* xyz = sphere_points(n);
+    dbrg_points p = as_points(xyz, n, 3 * sizeof(double), DBRG_FLOAT64);
+    dbrg_params params;
+    dbrg_mesh* mesh = NULL;
+    dbrg_stats stats;
+    uint32_t loop_length = 7;
+    double saved;
+
+    CHECK(dbrg_reconstruct(&p, NULL, NULL) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_reconstruct(&p, NULL, &mesh) == DBRG_OK);
+    CHECK(dbrg_mesh_status(mesh) == DBRG_OK);
+    CHECK(strcmp(dbrg_mesh_message(mesh), "") == 0);
+    CHECK(dbrg_mesh_point_count(mesh) == n);
+    CHECK(dbrg_mesh_triangle_count(mesh) == 2 * n - 4); /* a closed sphere: Euler's formula */
+    CHECK(is_oriented_manifold(dbrg_mesh_triangles(mesh), dbrg_mesh_triangle_count(mesh), (uint32_t)n));
+    CHECK(dbrg_mesh_boundary_loop_count(mesh) == 0);
+    CHECK(dbrg_mesh_boundary_loop(mesh, 0, &loop_length) == NULL);
+    CHECK(loop_length == 0);
+    memset(&stats, 0, sizeof stats);
+    CHECK(dbrg_mesh_stats(mesh, &stats) == DBRG_ERR_INVALID_ARGUMENT);
+    stats.struct_size = sizeof stats;
+    CHECK(dbrg_mesh_stats(mesh, &stats) == DBRG_OK);
+    CHECK(stats.input_points == n);
+    CHECK(stats.unique_points == n);
+    CHECK(stats.triangles == dbrg_mesh_triangle_count(mesh));
+    CHECK(stats.tetrahedra > 0);
+    CHECK(stats.seconds_total >= stats.seconds_delaunay);
+    CHECK(stats.peak_bytes > 0);
+    dbrg_mesh_destroy(mesh);
+    dbrg_mesh_destroy(NULL);
+
+    /* A failed call still gives a result object with the status and a message. */
+    saved = xyz[5];
+    xyz[5] = NAN;
+    CHECK(dbrg_reconstruct(&p, NULL, &mesh) == DBRG_ERR_NON_FINITE_INPUT);
+    CHECK(dbrg_mesh_status(mesh) == DBRG_ERR_NON_FINITE_INPUT);
+    CHECK(strstr(dbrg_mesh_message(mesh), "point 1") != NULL);
+    CHECK(dbrg_mesh_triangle_count(mesh) == 0);
+    CHECK(dbrg_mesh_triangles(mesh) == NULL);
+    dbrg_mesh_destroy(mesh);
+    xyz[5] = saved;
+
+    dbrg_params_init(&params);
+    params.sliver_angle = 1.0;
+    CHECK(dbrg_reconstruct(&p, &params, &mesh) == DBRG_ERR_INVALID_PARAMETER);
+    CHECK(strstr(dbrg_mesh_message(mesh), "sliver_angle") != NULL);
+    dbrg_mesh_destroy(mesh);
+
+    dbrg_params_init(&params);
+    params.progress = progress;
+    count_progress_calls = 0;
+    cancel_after = 0;
+    CHECK(dbrg_reconstruct(&p, &params, &mesh) == DBRG_OK);
+    CHECK(count_progress_calls > 3);
+    dbrg_mesh_destroy(mesh);
+    cancel_after = 2;
+    count_progress_calls = 0;
+    CHECK(dbrg_reconstruct(&p, &params, &mesh) == DBRG_ERR_CANCELLED);
+    CHECK(dbrg_mesh_triangle_count(mesh) == 0);
+    dbrg_mesh_destroy(mesh);
+    free(xyz);
+}
+
+static void test_allocator(void) {
+    const size_t n = 200;
+    double* xyz = sphere_points(n);
+    dbrg_points p = as_points(xyz, n, 3 * sizeof(double), DBRG_FLOAT64);
+    counting_allocator counter = {0, 0, 0, 0};
+    dbrg_allocator allocator;
+    dbrg_params params;
+    dbrg_mesh* mesh = NULL;
+    long total_requests, k, out_of_memory = 0;
+
+    allocator.allocate = counting_allocate;
+    allocator.reallocate = counting_reallocate;
+    allocator.deallocate = counting_deallocate;
+    allocator.user = &counter;
+    dbrg_params_init(&params);
+    params.allocator = &allocator;
+    CHECK(dbrg_reconstruct(&p, &params, &mesh) == DBRG_OK);
+    CHECK(counter.live_blocks > 0);
+    dbrg_mesh_destroy(mesh);
+    CHECK(counter.live_blocks == 0);
+    CHECK(counter.live_bytes == 0);
+    total_requests = counter.requests;
+    CHECK(total_requests > 10);
+
+    /* Refusing any one request gives DBRG_ERR_OUT_OF_MEMORY and leaks nothing. */
+    for (k = 1; k <= total_requests; ++k) {
+        dbrg_status status;
+        counter.requests = 0;
+        counter.fail_at = k;
+        status = dbrg_reconstruct(&p, &params, &mesh);
+        if (status == DBRG_ERR_OUT_OF_MEMORY) ++out_of_memory;
+        CHECK(status == DBRG_ERR_OUT_OF_MEMORY);
+        dbrg_mesh_destroy(mesh);
+        CHECK(counter.live_blocks == 0);
+        CHECK(counter.live_bytes == 0);
+    }
+    CHECK(out_of_memory == total_requests);
+    free(xyz);
+}
+
+static void test_tetrahedralization(void) {
+    /* A cube's corners and its centre: cospherical corners, resolved by perturbation. */
+    const float cube[9 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1, 0.5f, 0.5f, 0.5f};
+    dbrg_points p = as_points(cube, 9, 3 * sizeof(float), DBRG_FLOAT32);
+    dbrg_tetrahedralization* tets = NULL;
+    const uint32_t* vertices;
+    const uint32_t* adjacency;
+    uint32_t count, t, f, hull_faces = 0;
+    int symmetric = 1;
+
+    CHECK(dbrg_tetrahedralize(&p, NULL, NULL) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_tetrahedralize(&p, NULL, &tets) == DBRG_OK);
+    CHECK(dbrg_tetrahedralization_status(tets) == DBRG_OK);
+    CHECK(strcmp(dbrg_tetrahedralization_message(tets), "") == 0);
+    CHECK(dbrg_tetrahedralization_unique_point_count(tets) == 9);
+    count = dbrg_tetrahedralization_tet_count(tets);
+    vertices = dbrg_tetrahedralization_tets(tets);
+    adjacency = dbrg_tetrahedralization_adjacency(tets);
+    CHECK(count == 12); /* the centre sees each of the 6 faces as two triangles */
+    for (t = 0; t < count; ++t) {
+        for (f = 0; f < 4; ++f) {
+            const uint32_t other = adjacency[4 * t + f];
+            uint32_t g, back = 0;
+            CHECK(vertices[4 * t + f] < 9);
+            if (other == DBRG_NO_NEIGHBOR) {
+                ++hull_faces;
+                continue;
+            }
+            for (g = 0; g < 4; ++g) back += adjacency[4 * other + g] == t;
+            if (back != 1) symmetric = 0;
+        }
+    }
+    CHECK(symmetric);
+    CHECK(hull_faces == 12);
+    dbrg_tetrahedralization_destroy(tets);
+    dbrg_tetrahedralization_destroy(NULL);
+
+    p.count = 3;
+    CHECK(dbrg_tetrahedralize(&p, NULL, &tets) == DBRG_ERR_TOO_FEW_POINTS);
+    CHECK(dbrg_tetrahedralization_tet_count(tets) == 0);
+    CHECK(strlen(dbrg_tetrahedralization_message(tets)) > 0);
+    dbrg_tetrahedralization_destroy(tets);
+}
+
+int main(void) {
+    test_versions_and_statuses();
+    test_params();
+    test_point_checks();
+    test_reconstruction();
+    test_allocator();
+    test_tetrahedralization();
+    printf("%d passed, %d failed\n", checks_passed, checks_failed);
+    return checks_failed == 0 ? 0 : 1;
+}
