@@ -13,12 +13,17 @@ namespace dbrg {
 struct ConditionedPoints {
     explicit ConditionedPoints(Memory& memory) : coordinates(memory), input_index(memory) {}
 
-    // x, y, z of each distinct point, translated by the bounding box's minimum corner and scaled by
-    // 2^scale_exponent so the largest extent lies in [0.5, 1). Sorted lexicographically by (x, y, z):
-    // vertex ids therefore depend on the coordinates only, never on the caller's order.
+    // x, y, z of each distinct point, translated by `origin` and scaled by 2^scale_exponent so the
+    // largest extent lies in [0.5, 1). Sorted lexicographically by (x, y, z): vertex ids therefore
+    // depend on the coordinates only, never on the caller's order. The transform is exact (barring
+    // underflow below 2^-1022 after scaling), so distinct input points stay distinct.
     Array<double> coordinates;
     // For each distinct point, the smallest caller index among the input points merged into it.
     Array<uint32_t> input_index;
+    // Per axis: the bounding box's minimum corner rounded down to a multiple of 2^-scale_exponent, or
+    // 0 on an axis where subtracting that would round some coordinate. The translation is only there
+    // to keep coordinates small; exactness matters more.
+    double origin[3] = {0, 0, 0};
     int scale_exponent = 0;
     uint32_t duplicates_merged = 0;
 
@@ -28,7 +33,8 @@ struct ConditionedPoints {
 
 // Conditions `count` finite points given as x, y, z triples. Merges points that are equal after the
 // transform. Fails with DBRG_ERR_TOO_FEW_POINTS (fewer than 4 distinct points) or DBRG_ERR_DEGENERATE_INPUT
-// (all collinear, all coplanar), each with a message saying how many distinct points there were.
+// (all collinear, all coplanar), each with a message saying how many distinct points there were; `out`
+// is then left empty.
 dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out);
 
 } // namespace dbrg

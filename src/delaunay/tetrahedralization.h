@@ -16,17 +16,25 @@ constexpr uint32_t INFINITE_VERTEX = UINT32_MAX;
 
 // Local numbering: face lf of a tetrahedron is the face opposite its local vertex lf. Finite
 // tetrahedra are positively oriented: orient3d(v0, v1, v2, v3) > 0. In an infinite tetrahedron the
-// infinite vertex takes the place of a finite one and the orientation is the one it would have if
-// the infinite vertex were a point far outside the hull.
+// infinite vertex is always local vertex 3, so face 3 is its convex-hull face, and the orientation
+// is the one it would have if the infinite vertex were a point far outside the hull:
+// orient3d(v0, v1, v2, q) > 0 for a point q beyond that hull face.
 class Tetrahedralization {
 public:
     explicit Tetrahedralization(Memory& memory);
 
     // Computes the Delaunay tetrahedralization of `count` distinct points (x, y, z triples that stay
     // alive and unchanged as long as this object is used). Reports DBRG_STAGE_SORT and
-    // DBRG_STAGE_DELAUNAY progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY, DBRG_ERR_CANCELLED or
-    // DBRG_ERR_DEGENERATE_INPUT (with the message set on the context).
+    // DBRG_STAGE_DELAUNAY progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY, DBRG_ERR_CANCELLED,
+    // DBRG_ERR_TOO_FEW_POINTS, DBRG_ERR_TOO_MANY_POINTS or DBRG_ERR_DEGENERATE_INPUT (with the message
+    // set on the context). On failure the object is left empty. Writes context.stats.seconds_sort,
+    // seconds_delaunay (insertion only) and tetrahedra, and adds `counters` to the predicate_* fields.
+    // The tetrahedra are a function of the coordinates only: the same point array in any memory
+    // gives the same slots in the same order.
     dbrg_status build(const double* points, uint32_t count, Context& context);
+
+    // Empties the object and gives its memory back.
+    void clear();
 
     uint32_t vertex_count() const { return vertex_count_; }
     const double* point(uint32_t v) const { return points_ + 3 * static_cast<size_t>(v); }
@@ -34,7 +42,7 @@ public:
     // Tetrahedra are numbered 0 .. tet_slots() - 1; some slots are free (deleted and not reused).
     uint32_t tet_slots() const { return static_cast<uint32_t>(vertices_.size() / 4); }
     bool tet_is_free(uint32_t t) const { return vertices_[4 * size_t(t)] == FREE_MARK; }
-    bool tet_is_finite(uint32_t t) const;
+    bool tet_is_finite(uint32_t t) const { return vertices_[4 * size_t(t) + 3] != INFINITE_VERTEX; }
     uint32_t finite_tet_count() const { return finite_tets_; }
 
     uint32_t tet_vertex(uint32_t t, uint32_t lv) const { return vertices_[4 * size_t(t) + lv]; }
@@ -76,8 +84,8 @@ private:
     Array<uint32_t> vertices_;   // 4 per tetrahedron
     Array<uint32_t> adjacency_;  // 4 per tetrahedron: neighbour << 2 | its local face
     Array<uint32_t> vertex_tet_; // one incident tetrahedron per vertex
-    // Further private members (free list, walk state, ...) as the implementation needs.
     friend class DelaunayBuilder;
+    friend class TetgenImporter;
 };
 
 template <class Visit>

@@ -1,0 +1,454 @@
+// Bowyer-Watson: the incremental Delaunay tetrahedralization — walk to the new point, collect the
+// cavity of tetrahedra whose circumsphere holds it, and connect the point to the cavity's boundary.
+//
+// Based on: A. Bowyer, "Computing Dirichlet tessellations" and D. F. Watson, "Computing the
+// n-dimensional Delaunay tessellation with application to Voronoi polytopes" (The Computer Journal 24,
+// 1981); O. Devillers, S. Pion, M. Teillaud, "Walking in a triangulation" (IJFCS 13, 2002) for the
+// randomized visibility walk.
+#include <string.h>
+
+#include "core/status.h"
+#include "delaunay/affine_checks.h"
+#include "delaunay/spatial_sort.h"
+#include "delaunay/tetrahedralization.h"
+
+namespace dbrg {
+namespace {
+
+// While a point is inserted, bit 31 of vertex slot 0 marks a tetrahedron of the cavity and bit 31 of
+// slot 1 one that was tested and is not in conflict. Vertex ids stay below 2^31 (DBRG_MAX_POINTS) and
+// slots 0 and 1 never hold the infinite vertex, so the bits are free; they are cleared after each point.
+constexpr uint32_t IN_CAVITY_BIT = 0x80000000u;
+constexpr uint32_t OUTSIDE_BIT = 0x80000000u;
+constexpr uint32_t VERTEX_ID_MASK = 0x7fffffffu;
+// Adjacency packs the neighbour in the upper 30 bits.
+constexpr uint32_t MAX_TET_SLOTS = 1u << 30;
+constexpr uint32_t NO_FACE = 4;
+constexpr uint32_t PROGRESS_INTERVAL = 4096;
+constexpr uint64_t WALK_SEED = 0xbb67ae8584caa73bull;
+// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35); the store is
+// reserved for somewhat fewer and then grows by an eighth at a time, which keeps the peak low.
+constexpr double EXPECTED_TETS_PER_POINT = 6.6;
+
+// Face lf of a tetrahedron as three local vertices in the order that makes (face, lf) an even
+// permutation of (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.
+constexpr uint32_t FACE_VERTEX[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+
+struct BoundaryFace {
+    uint32_t tet;   // a cavity tetrahedron
+    uint32_t face;  // its local face on the cavity boundary
+};
+
+struct NewTet {
+    uint32_t vertex[4];
+    uint32_t outer;  // packed adjacency across face `face` (the old cavity boundary)
+    uint32_t face;   // the local index of the new point
+};
+
+struct EdgeEntry {
+    uint32_t a, b;   // the edge, a < b (the infinite vertex is the largest id)
+    uint32_t link;   // the new tetrahedron and its local face waiting for a partner
+    uint32_t stamp;  // the insertion the entry belongs to; older entries count as empty
+};
+
+uint32_t hash_edge(uint32_t a, uint32_t b) {
+    uint32_t h = a * 0x9e3779b1u ^ (b + 0x7f4a7c15u) * 0x85ebca6bu;
+    return h ^ (h >> 16);
+}
+
+} // namespace
+
+class DelaunayBuilder {
+public:
+    DelaunayBuilder(Tetrahedralization& out, Context& context)
+        : out_(out), context_(context), memory_(context.memory), cavity_(memory_), outside_(memory_),
+          boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_) {}
+
+    dbrg_status run(Array<uint32_t>& order);
+
+private:
+    dbrg_status start(Array<uint32_t>& order);
+    dbrg_status insert(uint32_t v);
+    dbrg_status locate(const double* p, uint32_t& found);
+    bool in_conflict(const uint32_t* tet, const double* p);
+    dbrg_status take_slot(uint32_t& slot);
+    dbrg_status link_new_tets();
+    void refresh_pointers() {
+        vertex_ = out_.vertices_.data();
+        adjacency_ = out_.adjacency_.data();
+    }
+    const double* point(uint32_t v) const { return points_ + 3 * size_t(v); }
+    uint32_t next_random() {
+        // xorshift64: only a few bits per walk step are needed, and it has to be cheap.
+        random_ ^= random_ << 13;
+        random_ ^= random_ >> 7;
+        random_ ^= random_ << 17;
+        return static_cast<uint32_t>(random_ >> 32);
+    }
+
+    Tetrahedralization& out_;
+    Context& context_;
+    Memory& memory_;
+    const double* points_ = nullptr;
+    uint32_t* vertex_ = nullptr;     // out_.vertices_.data(), refreshed whenever the store grows
+    uint32_t* adjacency_ = nullptr;  // out_.adjacency_.data()
+    uint32_t free_head_ = NO_TET;    // free slots, chained through adjacency entry 0
+    uint32_t hint_ = 0;              // a tetrahedron made by the last insertion: the next walk starts there
+    uint64_t random_ = WALK_SEED;
+    uint32_t stamp_ = 0;
+
+    // Scratch space of one insertion.
+    Array<uint32_t> cavity_;
+    Array<uint32_t> outside_;
+    Array<BoundaryFace> boundary_;
+    Array<NewTet> new_tets_;
+    Array<uint32_t> new_slots_;
+    Array<EdgeEntry> edges_;
+};
+
+dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
+    if (free_head_ != NO_TET) {
+        slot = free_head_;
+        free_head_ = adjacency_[4 * size_t(slot)];
+        return DBRG_OK;
+    }
+    Array<uint32_t>& vertices = out_.vertices_;
+    Array<uint32_t>& adjacency = out_.adjacency_;
+    const size_t slots = vertices.size() / 4;
+    if (slots >= MAX_TET_SLOTS) {
+        return context_.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than %u tetrahedra",
+                             MAX_TET_SLOTS);
+    }
+    if (vertices.size() == vertices.capacity()) {
+        size_t grown = slots + slots / 8 + 64;
+        grown = grown > MAX_TET_SLOTS ? MAX_TET_SLOTS : grown;
+        if (!vertices.reserve(4 * grown) || !adjacency.reserve(4 * grown)) return context_.fail_out_of_memory();
+    }
+    // Within capacity: these cannot fail.
+    vertices.resize(vertices.size() + 4);
+    adjacency.resize(adjacency.size() + 4);
+    refresh_pointers();
+    slot = static_cast<uint32_t>(slots);
+    return DBRG_OK;
+}
+
+bool DelaunayBuilder::in_conflict(const uint32_t* tet, const double* p) {
+    PredicateCounters& counters = out_.counters;
+    const double* a = point(tet[0] & VERTEX_ID_MASK);
+    const double* b = point(tet[1] & VERTEX_ID_MASK);
+    const double* c = point(tet[2]);
+    if (tet[3] == INFINITE_VERTEX) {
+        // Beyond the hull face (a, b, c), or on its plane and inside its circumcircle: the limit of the
+        // circumsphere test as the fourth vertex goes to infinity.
+        const int side = orient3d(a, b, c, p, counters);
+        if (side != 0) return side > 0;
+        return incircle3d_sos(a, b, c, p, counters) > 0;
+    }
+    return insphere_sos(a, b, c, point(tet[3]), p, counters) > 0;
+}
+
+dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
+    PredicateCounters& counters = out_.counters;
+    uint32_t t = hint_;
+    if (vertex_[4 * size_t(t) + 3] == INFINITE_VERTEX) t = adjacency_[4 * size_t(t) + 3] >> 2;
+    uint32_t entry = NO_FACE;  // the face we came in by: p is known to be on its inner side
+    // A visibility walk in a Delaunay tetrahedralization never cycles (Edelsbrunner's acyclicity of
+    // the in-front relation); the step limit only turns a bug into an error instead of a hang.
+    const size_t step_limit = out_.vertices_.size() + 1000;
+    for (size_t step = 0; step < step_limit; ++step) {
+        const uint32_t* tv = vertex_ + 4 * size_t(t);
+        const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
+        const uint32_t first = next_random() & 3;
+        uint32_t exit = NO_FACE;
+        for (uint32_t k = 0; k < 4; ++k) {
+            const uint32_t lf = (first + k) & 3;
+            if (lf == entry) continue;
+            // p replacing vertex lf: negative when p is on the far side of face lf.
+            const double* kept = q[lf];
+            q[lf] = p;
+            const int side = orient3d(q[0], q[1], q[2], q[3], counters);
+            q[lf] = kept;
+            if (side < 0) {
+                exit = lf;
+                break;
+            }
+        }
+        if (exit == NO_FACE) {
+            found = t;  // p lies in the closed tetrahedron, hence strictly inside its circumsphere
+            return DBRG_OK;
+        }
+        const uint32_t across = adjacency_[4 * size_t(t) + exit];
+        t = across >> 2;
+        entry = across & 3;
+        if (vertex_[4 * size_t(t) + 3] == INFINITE_VERTEX) {
+            found = t;  // p is strictly beyond this hull face
+            return DBRG_OK;
+        }
+    }
+    return context_.fail(DBRG_ERR_INTERNAL, "point location did not terminate (a bug in dbrg)");
+}
+
+dbrg_status DelaunayBuilder::start(Array<uint32_t>& order) {
+    PredicateCounters& counters = out_.counters;
+    const uint32_t n = static_cast<uint32_t>(order.size());
+    // The first four affinely independent points of the order: the first two, the next one off their
+    // line, the next one off their plane.
+    uint32_t c_pos = 2;
+    while (c_pos < n && points_collinear(point(order[0]), point(order[1]), point(order[c_pos]), counters)) ++c_pos;
+    uint32_t d_pos = 2;
+    if (c_pos < n) {
+        while (d_pos < n && (d_pos == c_pos || orient3d(point(order[0]), point(order[1]), point(order[c_pos]),
+                                                        point(order[d_pos]), counters) == 0)) {
+            ++d_pos;
+        }
+    }
+    if (c_pos >= n || d_pos >= n) {
+        return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are %s", n, c_pos >= n ? "collinear" : "coplanar");
+    }
+    // Move them to positions 2 and 3, keeping the rest in order.
+    const uint32_t c = order[c_pos], d = order[d_pos];
+    uint32_t write = c_pos > d_pos ? c_pos : d_pos;
+    for (uint32_t read = write + 1; read-- > 2;) {
+        if (read != c_pos && read != d_pos) order[write--] = order[read];
+    }
+    order[2] = c;
+    order[3] = d;
+
+    uint32_t v[4] = {order[0], order[1], c, d};
+    if (orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3]), counters) < 0) {
+        v[0] = order[1];
+        v[1] = order[0];
+    }
+    const size_t reserve_slots = static_cast<size_t>(EXPECTED_TETS_PER_POINT * n) + 64;
+    if (!out_.vertices_.reserve(4 * reserve_slots) || !out_.adjacency_.reserve(4 * reserve_slots) ||
+        !out_.vertices_.resize(20) || !out_.adjacency_.resize(20)) {
+        return context_.fail_out_of_memory();
+    }
+    refresh_pointers();
+    // Slot 0: the finite tetrahedron. Slot 1 + lf: the infinite one behind its face lf, with the face's
+    // orientation reversed so that a point beyond the face sees it positively.
+    memcpy(vertex_, v, sizeof v);
+    for (uint32_t lf = 0; lf < 4; ++lf) {
+        uint32_t* iv = vertex_ + 4 * (1 + lf);
+        iv[0] = v[FACE_VERTEX[lf][1]];
+        iv[1] = v[FACE_VERTEX[lf][0]];
+        iv[2] = v[FACE_VERTEX[lf][2]];
+        iv[3] = INFINITE_VERTEX;
+        adjacency_[lf] = (1 + lf) << 2 | 3;
+        adjacency_[4 * (1 + lf) + 3] = 0u << 2 | lf;
+    }
+    // The infinite tetrahedra meet along the hull edges: match their faces by their vertex sets.
+    for (uint32_t s = 1; s < 5; ++s) {
+        for (uint32_t f = 0; f < 3; ++f) {
+            for (uint32_t t = 1; t < 5; ++t) {
+                if (t == s) continue;
+                // t shares face f of s when t lacks exactly the vertex s[f] among s's finite ones... i.e.
+                // when t contains both other finite vertices of s.
+                uint32_t shared = 0, missing = NO_FACE;
+                for (uint32_t g = 0; g < 3; ++g) {
+                    const uint32_t w = vertex_[4 * t + g];
+                    bool in_s = false;
+                    for (uint32_t h = 0; h < 3; ++h) in_s |= h != f && vertex_[4 * s + h] == w;
+                    if (in_s) ++shared; else missing = g;
+                }
+                if (shared == 2) adjacency_[4 * s + f] = t << 2 | missing;
+            }
+        }
+    }
+    out_.finite_tets_ = 1;
+    hint_ = 0;
+    return DBRG_OK;
+}
+
+dbrg_status DelaunayBuilder::insert(uint32_t v) {
+    const double* p = point(v);
+    uint32_t first;
+    DBRG_PROPAGATE(locate(p, first));
+
+    // The cavity: breadth-first over the tetrahedra in conflict, which are connected.
+    cavity_.clear();
+    outside_.clear();
+    boundary_.clear();
+    vertex_[4 * size_t(first)] |= IN_CAVITY_BIT;
+    if (!cavity_.push_back(first)) return context_.fail_out_of_memory();
+    for (size_t i = 0; i < cavity_.size(); ++i) {
+        const uint32_t c = cavity_[i];
+        for (uint32_t lf = 0; lf < 4; ++lf) {
+            const uint32_t n = adjacency_[4 * size_t(c) + lf] >> 2;
+            uint32_t* nv = vertex_ + 4 * size_t(n);
+            if (nv[0] & IN_CAVITY_BIT) continue;
+            if (!(nv[1] & OUTSIDE_BIT)) {
+                if (in_conflict(nv, p)) {
+                    nv[0] |= IN_CAVITY_BIT;
+                    if (!cavity_.push_back(n)) return context_.fail_out_of_memory();
+                    continue;
+                }
+                nv[1] |= OUTSIDE_BIT;
+                if (!outside_.push_back(n)) return context_.fail_out_of_memory();
+            }
+            if (!boundary_.push_back(BoundaryFace{c, lf})) return context_.fail_out_of_memory();
+        }
+    }
+
+    // Each boundary face makes a new tetrahedron: the cavity tetrahedron behind it with the vertex
+    // opposite the face replaced by v. v is on the same side of the face as that vertex (the cavity
+    // is star-shaped from v), so the orientation carries over, and so does the infinite vertex's slot.
+    const size_t face_count = boundary_.size();
+    const size_t cavity_size = cavity_.size();
+    if (!new_tets_.resize(face_count) || !new_slots_.resize(face_count)) return context_.fail_out_of_memory();
+    for (size_t i = 0; i < face_count; ++i) {
+        const BoundaryFace f = boundary_[i];
+        NewTet& made = new_tets_[i];
+        memcpy(made.vertex, vertex_ + 4 * size_t(f.tet), sizeof made.vertex);
+        made.vertex[0] &= VERTEX_ID_MASK;
+        made.vertex[f.face] = v;
+        made.outer = adjacency_[4 * size_t(f.tet) + f.face];
+        made.face = f.face;
+    }
+    uint32_t finite_removed = 0;
+    for (size_t i = 0; i < cavity_size; ++i) finite_removed += vertex_[4 * size_t(cavity_[i]) + 3] != INFINITE_VERTEX;
+    for (size_t i = 0; i < face_count; ++i) {
+        if (i < cavity_size) {
+            new_slots_[i] = cavity_[i];
+        } else {
+            DBRG_PROPAGATE(take_slot(new_slots_[i]));
+        }
+    }
+    for (size_t i = face_count; i < cavity_size; ++i) {
+        const uint32_t s = cavity_[i];
+        vertex_[4 * size_t(s)] = Tetrahedralization::FREE_MARK;
+        adjacency_[4 * size_t(s)] = free_head_;
+        free_head_ = s;
+    }
+    uint32_t finite_added = 0;
+    hint_ = new_slots_[0];
+    for (size_t i = 0; i < face_count; ++i) {
+        const NewTet& made = new_tets_[i];
+        const uint32_t s = new_slots_[i];
+        memcpy(vertex_ + 4 * size_t(s), made.vertex, sizeof made.vertex);
+        adjacency_[4 * size_t(s) + made.face] = made.outer;
+        adjacency_[4 * size_t(made.outer >> 2) + (made.outer & 3)] = s << 2 | made.face;
+        if (made.vertex[3] != INFINITE_VERTEX) {
+            ++finite_added;
+            hint_ = s;
+        }
+    }
+    out_.finite_tets_ += finite_added - finite_removed;
+    for (size_t i = 0; i < outside_.size(); ++i) vertex_[4 * size_t(outside_[i]) + 1] &= VERTEX_ID_MASK;
+    return link_new_tets();
+}
+
+dbrg_status DelaunayBuilder::link_new_tets() {
+    // The three faces of a new tetrahedron that contain v meet the other new tetrahedra along the
+    // edges of the cavity boundary; each such edge belongs to exactly two boundary faces, so a hash
+    // table keyed by the edge pairs them up.
+    const size_t face_count = new_tets_.size();
+    size_t capacity = 64;
+    while (capacity < 4 * face_count) capacity *= 2;
+    if (edges_.size() < capacity) {
+        if (!edges_.resize(capacity, EdgeEntry{0, 0, 0, 0})) return context_.fail_out_of_memory();
+        for (EdgeEntry& e : edges_) e.stamp = 0;
+        stamp_ = 0;
+    }
+    if (++stamp_ == 0) {
+        for (EdgeEntry& e : edges_) e.stamp = 0;
+        stamp_ = 1;
+    }
+    const uint32_t mask = static_cast<uint32_t>(edges_.size() - 1);
+    EdgeEntry* table = edges_.data();
+    // For the new point at local index lf and the face g, the two local vertices other than lf and g.
+    static const uint8_t OTHER[4][4][2] = {
+        {{0, 0}, {2, 3}, {1, 3}, {1, 2}},
+        {{2, 3}, {0, 0}, {0, 3}, {0, 2}},
+        {{1, 3}, {0, 3}, {0, 0}, {0, 1}},
+        {{1, 2}, {0, 2}, {0, 1}, {0, 0}},
+    };
+    for (size_t i = 0; i < face_count; ++i) {
+        const uint32_t s = new_slots_[i];
+        const NewTet& made = new_tets_[i];
+        for (uint32_t g = 0; g < 4; ++g) {
+            if (g == made.face) continue;
+            uint32_t a = made.vertex[OTHER[made.face][g][0]];
+            uint32_t b = made.vertex[OTHER[made.face][g][1]];
+            if (a > b) {
+                const uint32_t t = a;
+                a = b;
+                b = t;
+            }
+            uint32_t k = hash_edge(a, b) & mask;
+            while (table[k].stamp == stamp_ && (table[k].a != a || table[k].b != b)) k = (k + 1) & mask;
+            EdgeEntry& e = table[k];
+            if (e.stamp == stamp_) {
+                adjacency_[4 * size_t(s) + g] = e.link;
+                adjacency_[4 * size_t(e.link >> 2) + (e.link & 3)] = s << 2 | g;
+            } else {
+                e = EdgeEntry{a, b, s << 2 | g, stamp_};
+            }
+        }
+    }
+    return DBRG_OK;
+}
+
+dbrg_status DelaunayBuilder::run(Array<uint32_t>& order) {
+    points_ = out_.points_;
+    DBRG_PROPAGATE(start(order));
+    const uint32_t n = static_cast<uint32_t>(order.size());
+    for (uint32_t i = 4; i < n; ++i) {
+        if (i % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(i) / n));
+        DBRG_PROPAGATE(insert(order[i]));
+    }
+    return context_.report(DBRG_STAGE_DELAUNAY, 1.0);
+}
+
+dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Context& context) {
+    clear();
+    if (count < 4) {
+        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%u points given; at least 4 distinct points are needed", count);
+    }
+    if (count > DBRG_MAX_POINTS) {
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%u points given; at most %zu are supported", count,
+                            static_cast<size_t>(DBRG_MAX_POINTS));
+    }
+    points_ = points;
+    vertex_count_ = count;
+    counters = PredicateCounters();
+
+    const double sort_start = seconds_now();
+    Array<uint32_t> order(context.memory);
+    dbrg_status status = brio_hilbert_order(points, count, context, order);
+    const double insert_start = seconds_now();
+    if (status == DBRG_OK) {
+        DelaunayBuilder builder(*this, context);
+        status = builder.run(order);
+    }
+    order.release();
+    if (status == DBRG_OK) {
+        // One incident tetrahedron per vertex, the first slot that has it.
+        if (!vertex_tet_.resize(count, NO_TET)) {
+            status = context.fail_out_of_memory();
+        } else {
+            const uint32_t slots = tet_slots();
+            for (uint32_t t = slots; t-- > 0;) {
+                if (tet_is_free(t)) continue;
+                for (uint32_t lv = 0; lv < 4; ++lv) {
+                    const uint32_t w = vertices_[4 * size_t(t) + lv];
+                    if (w != INFINITE_VERTEX) vertex_tet_[w] = t;
+                }
+            }
+        }
+    }
+    const double end = seconds_now();
+    context.stats.seconds_sort += insert_start - sort_start;
+    context.stats.seconds_delaunay += end - insert_start;
+    context.stats.predicate_calls += counters.calls;
+    context.stats.predicate_filter_failures += counters.filter_failures;
+    context.stats.predicate_perturbations += counters.perturbations;
+    if (status != DBRG_OK) {
+        clear();
+        return status;
+    }
+    context.stats.tetrahedra = finite_tets_;
+    return DBRG_OK;
+}
+
+} // namespace dbrg

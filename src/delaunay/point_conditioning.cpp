@@ -1,0 +1,165 @@
+// Point conditioning: exact power-of-two rescaling, lexicographic order, duplicate merging and the
+// degeneracy checks (too few, collinear, coplanar) that the tetrahedralization relies on.
+#include "delaunay/point_conditioning.h"
+
+#include <math.h>
+
+#include <algorithm>
+
+#include "core/status.h"
+#include "delaunay/affine_checks.h"
+#include "predicates/predicates.h"
+
+namespace dbrg {
+namespace {
+
+// True when a - b is representable, i.e. the subtraction rounds nothing (Knuth's two-difference:
+// the rounding error of a - b, computed without it being contracted into an FMA).
+bool subtraction_is_exact(double a, double b) {
+    const double difference = a - b;
+    const double b_virtual = a - difference;
+    const double a_virtual = difference + b_virtual;
+    const double b_round = b_virtual - b;
+    const double a_round = a - a_virtual;
+    return a_round + b_round == 0.0;
+}
+
+// The translation for one axis: the minimum rounded down to a multiple of 2^exponent (so that it has
+// few significant bits), kept only if it is exact for every coordinate on the axis.
+double exact_origin(const double* xyz, size_t count, int axis, double minimum, int exponent) {
+    const double units = floor(ldexp(minimum, -exponent));
+    if (!isfinite(units)) return 0.0;
+    const double origin = ldexp(units, exponent);
+    if (!isfinite(origin) || origin == 0.0) return 0.0;
+    for (size_t i = 0; i < count; ++i) {
+        if (!subtraction_is_exact(xyz[3 * i + axis], origin)) return 0.0;
+    }
+    return origin;
+}
+
+// Finds the first point after the lexicographically smallest two that makes them non-collinear, and
+// then one that is not coplanar with the three. Returns the number of affinely independent points
+// found (2, 3 or 4).
+int affine_rank(const ConditionedPoints& points, PredicateCounters& counters) {
+    const uint32_t n = points.size();
+    const double* a = points.point(0);
+    const double* b = points.point(n - 1);  // the two lexicographic extremes are distinct
+    uint32_t c = 1;
+    while (c + 1 < n && points_collinear(a, b, points.point(c), counters)) ++c;
+    if (c + 1 >= n) return 2;
+    for (uint32_t d = 1; d + 1 < n; ++d) {
+        if (orient3d(a, b, points.point(c), points.point(d), counters) != 0) return 4;
+    }
+    return 3;
+}
+
+} // namespace
+
+namespace {
+
+dbrg_status condition(const double* xyz, size_t count, Context& context, ConditionedPoints& out) {
+    out.coordinates.clear();
+    out.input_index.clear();
+    out.duplicates_merged = 0;
+    out.scale_exponent = 0;
+    out.origin[0] = out.origin[1] = out.origin[2] = 0.0;
+    if (count > DBRG_MAX_POINTS) {
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", count,
+                            static_cast<size_t>(DBRG_MAX_POINTS));
+    }
+    if (count < 4) {
+        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given; at least 4 distinct points are needed",
+                            count);
+    }
+
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = xyz[k];
+    for (size_t i = 1; i < count; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double v = xyz[3 * i + k];
+            lo[k] = v < lo[k] ? v : lo[k];
+            hi[k] = v > hi[k] ? v : hi[k];
+        }
+    }
+    // The extent may overflow to infinity (coordinates near +-DBL_MAX); measure half of it then.
+    double extent = 0.0;
+    bool halved = false;
+    for (int k = 0; k < 3; ++k) extent = hi[k] - lo[k] > extent ? hi[k] - lo[k] : extent;
+    if (isinf(extent)) {
+        extent = 0.0;
+        halved = true;
+        for (int k = 0; k < 3; ++k) extent = 0.5 * hi[k] - 0.5 * lo[k] > extent ? 0.5 * hi[k] - 0.5 * lo[k] : extent;
+    }
+    if (extent == 0.0) {
+        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "all %zu points are equal: 1 distinct point; at least 4 are needed",
+                            count);
+    }
+    int exponent = 0;
+    frexp(extent, &exponent);  // extent = f * 2^exponent with f in [0.5, 1)
+    if (halved) ++exponent;
+    out.scale_exponent = -exponent;
+    for (int k = 0; k < 3; ++k) out.origin[k] = exact_origin(xyz, count, k, lo[k], exponent);
+
+    // The transformed coordinates in input order, then an index sorted by them (ties by input index,
+    // so the first of a group of equal points is the one with the smallest caller index).
+    Array<double> scaled(context.memory);
+    Array<uint32_t> order(context.memory);
+    if (!scaled.resize(3 * count) || !order.resize(count)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) {
+        for (int k = 0; k < 3; ++k) scaled[3 * i + k] = ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent);
+        order[i] = static_cast<uint32_t>(i);
+    }
+    const double* s = scaled.data();
+    std::sort(order.begin(), order.end(), [s](uint32_t i, uint32_t j) {
+        const int c = compare_points(s + 3 * size_t(i), s + 3 * size_t(j));
+        return c != 0 ? c < 0 : i < j;
+    });
+
+    size_t distinct = 1;
+    for (size_t i = 1; i < count; ++i) {
+        if (compare_points(s + 3 * size_t(order[i]), s + 3 * size_t(order[i - 1])) != 0) ++distinct;
+    }
+    if (!out.coordinates.reserve(3 * distinct) || !out.input_index.reserve(distinct)) {
+        return context.fail_out_of_memory();
+    }
+    for (size_t i = 0; i < count; ++i) {
+        const double* p = s + 3 * size_t(order[i]);
+        if (i > 0 && compare_points(p, s + 3 * size_t(order[i - 1])) == 0) continue;
+        out.coordinates.push_back(p[0]);
+        out.coordinates.push_back(p[1]);
+        out.coordinates.push_back(p[2]);
+        out.input_index.push_back(order[i]);
+    }
+    out.duplicates_merged = static_cast<uint32_t>(count - distinct);
+    scaled.release();
+    order.release();
+
+    if (distinct < 4) {
+        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given but only %zu distinct; at least 4 are needed",
+                            count, distinct);
+    }
+    PredicateCounters counters;
+    const int rank = affine_rank(out, counters);
+    if (rank == 2) {
+        return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %zu distinct points (of %zu given) are collinear",
+                            distinct, count);
+    }
+    if (rank == 3) {
+        return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %zu distinct points (of %zu given) are coplanar",
+                            distinct, count);
+    }
+    return DBRG_OK;
+}
+
+} // namespace
+
+dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out) {
+    const dbrg_status status = condition(xyz, count, context, out);
+    if (status != DBRG_OK) {
+        out.coordinates.release();  // a failed call leaves nothing behind
+        out.input_index.release();
+    }
+    return status;
+}
+
+} // namespace dbrg

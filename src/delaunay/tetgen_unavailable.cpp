@@ -1,0 +1,13 @@
+// TetGen backend, absent: builds configured without -Dtetgen=enabled answer DBRG_ERR_UNSUPPORTED.
+#include "delaunay/tetgen_backend.h"
+
+namespace dbrg {
+
+bool tetgen_available() { return false; }
+
+dbrg_status build_with_tetgen(const double*, uint32_t, Context& context, Tetrahedralization& out) {
+    out.clear();
+    return context.fail(DBRG_ERR_UNSUPPORTED, "this build of dbrg has no TetGen backend (configure with -Dtetgen=enabled)");
+}
+
+} // namespace dbrg
