@@ -37,6 +37,7 @@ dbrg_status build_tetrahedralization(const ConditionedPoints& conditioned, Conte
 bool component_faces_inward(const Surface& surface, const Tetrahedralization& delaunay, uint32_t first, uint32_t end) {
     double volume = 0;
     for (uint32_t f = first; f < end; ++f) {
+        if (surface.face_removed(f)) continue;
         for (uint32_t i = 0; i < 3; ++i) {
             if (surface.is_boundary(3 * f + i)) return false;
         }
@@ -52,11 +53,12 @@ bool component_faces_inward(const Surface& surface, const Tetrahedralization& de
 dbrg_status emit_surface(const Surface& surface, const RegionGrower& grower, const Tetrahedralization& delaunay,
                          const ConditionedPoints& conditioned, Context& context, SurfaceResult& result) {
     const uint32_t faces = surface.face_count();
-    if (!result.triangles.reserve(3 * size_t(faces))) return context.fail_out_of_memory();
+    if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
     for (uint32_t k = 0; k < grower.component_count(); ++k) {
         const uint32_t first = grower.component_start(k), end = grower.component_start(k + 1);
         const bool flip = component_faces_inward(surface, delaunay, first, end);
         for (uint32_t f = first; f < end; ++f) {
+            if (surface.face_removed(f)) continue;
             result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
             result.triangles.push_back(conditioned.input_index[surface.corner(f, flip ? 2 : 1)]);
             result.triangles.push_back(conditioned.input_index[surface.corner(f, flip ? 1 : 2)]);
@@ -73,13 +75,16 @@ dbrg_status emit_surface(const Surface& surface, const RegionGrower& grower, con
             visited[h] = 1;
             ++boundary_edges;
             if (!result.loop_vertices.push_back(conditioned.input_index[surface.origin(h)])) return context.fail_out_of_memory();
-            h = surface.vertex_halfedge(surface.target(h));
+            h = surface.fan_exit(h);
         } while (h != start);
         if (!result.loop_offsets.push_back(static_cast<uint32_t>(result.loop_vertices.size()))) {
             return context.fail_out_of_memory();
         }
     }
-    context.stats.triangles = faces;
+    uint32_t vertices_used = 0;
+    for (uint32_t v = 0; v < surface.vertex_count(); ++v) vertices_used += surface.is_used(v) ? 1 : 0;
+    context.stats.triangles = surface.live_face_count();
+    context.stats.vertices_used = vertices_used;
     context.stats.boundary_edges = boundary_edges;
     context.stats.boundary_loops = static_cast<uint32_t>(result.loop_offsets.size() - 1);
     return DBRG_OK;

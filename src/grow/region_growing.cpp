@@ -65,6 +65,7 @@ dbrg_status RegionGrower::grow() {
         const uint32_t first_face = surface_.face_count();
         DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
         DBRG_PROPAGATE(grow_component());
+        DBRG_PROPAGATE(resolve_pinches());
         if (component_count() > 0 && surface_.face_count() - first_face < MIN_SEEDED_COMPONENT_FACES) {
             remove_component(first_face);
             continue;
@@ -72,7 +73,6 @@ dbrg_status RegionGrower::grow() {
         if (!component_starts_.push_back(surface_.face_count())) return context_.fail_out_of_memory();
         context_.stats.components = component_count();
     }
-    context_.stats.vertices_used = used_vertices_;
     return context_.report(DBRG_STAGE_GROW, 1.0);
 }
 
@@ -128,10 +128,13 @@ dbrg_status RegionGrower::drain_queue() {
         if (c.version != versions_[c.halfedge] || !surface_.is_boundary(c.halfedge)) continue;  // stale
         ++stats.candidates_evaluated;
         double smoothness;
-        bool apex_on_boundary;
-        const Verdict verdict = examine(c, smoothness, apex_on_boundary);
-        if (verdict != Verdict::valid) {
-            DBRG_PROPAGATE(reject(c, verdict, apex_on_boundary));
+        const Verdict verdict = examine(c, smoothness);
+        if (verdict == Verdict::pinch && !c.postponed) {
+            DBRG_PROPAGATE(postpone(c));
+            continue;
+        }
+        if (verdict != Verdict::valid && verdict != Verdict::pinch) {
+            DBRG_PROPAGATE(reject(c, verdict));
             continue;
         }
         if (smoothness < c.smoothness) {
@@ -142,8 +145,7 @@ dbrg_status RegionGrower::drain_queue() {
         }
         if (!passes_boundary_test(c)) {
             if (!c.postponed) {
-                c.postponed = 1;
-                if (!postponed_.push_back(c)) return context_.fail_out_of_memory();
+                DBRG_PROPAGATE(postpone(c));
             } else {
                 ++stats.rejected_boundary;
                 cause_[c.halfedge] = BOUNDARY_OPEN;
@@ -159,19 +161,20 @@ dbrg_status RegionGrower::drain_queue() {
     return DBRG_OK;
 }
 
-dbrg_status RegionGrower::reject(Candidate c, Verdict verdict, bool apex_on_boundary) {
+dbrg_status RegionGrower::postpone(Candidate c) {
+    c.postponed = 1;
+    return postponed_.push_back(c) ? DBRG_OK : context_.fail_out_of_memory();
+}
+
+dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
     dbrg_stats& stats = context_.stats;
-    // A candidate whose apex is elsewhere on the boundary may become an ear once the fronts meet.
-    if (verdict == Verdict::bowtie && apex_on_boundary && !c.postponed) {
-        c.postponed = 1;
-        return postponed_.push_back(c) ? DBRG_OK : context_.fail_out_of_memory();
-    }
     switch (verdict) {
     case Verdict::edge_nonmanifold: ++stats.rejected_edge_nonmanifold; break;
     case Verdict::orientation: ++stats.rejected_orientation; break;
     case Verdict::bowtie: ++stats.rejected_bowtie; break;
     case Verdict::dihedral: ++stats.rejected_dihedral; break;
-    case Verdict::valid: break;
+    case Verdict::valid:
+    case Verdict::pinch: break;
     }
     // The edge moves on to its next-best candidate (§3.2.2).
     return propose(c.halfedge, c.radius, c.apex);
@@ -207,37 +210,34 @@ bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint
 }
 
 // The topological and geometrical examinations of §3.2.1 for attaching (v, u, apex) to the boundary
-// half-edge u->v: no edge with a third face, compatible orientation, no neck vertex, and dihedral angles
-// with every neighbour in S below theta_sliver. Also computes the local smooth degree (§3.1.3) over the
-// neighbours the triangle would have.
-RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness, bool& apex_on_boundary) const {
-    const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge), w = c.apex;
-    const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(w));
-    double cos_sum = dihedral_cosine(normal, normals_[Surface::face_of(c.halfedge)]);
-    uint32_t neighbours = 1;
-    apex_on_boundary = surface_.is_boundary_vertex(w);
-    smoothness = cos_sum;
-    if (cos_sum <= cos_sliver_) return Verdict::dihedral;
-    if (!surface_.is_used(w)) return Verdict::valid;
-
-    // The new face has half-edges u->w and w->v; S may hold neither, or their reverses on its boundary.
-    const uint32_t new_edges[2][2] = {{u, w}, {w, v}};
-    bool shares_edge = false;
-    for (const auto& edge : new_edges) {
-        const uint32_t same = surface_.find_halfedge(edge[0], edge[1]);
-        if (same != NO_HALFEDGE) return surface_.is_boundary(same) ? Verdict::orientation : Verdict::edge_nonmanifold;
-        const uint32_t reverse = surface_.find_halfedge(edge[1], edge[0]);
-        if (reverse == NO_HALFEDGE) continue;
-        if (!surface_.is_boundary(reverse)) return Verdict::edge_nonmanifold;
-        const double cos_theta = dihedral_cosine(normal, normals_[Surface::face_of(reverse)]);
-        if (cos_theta <= cos_sliver_) return Verdict::dihedral;
+// half-edge u->v: no edge with a third face, compatible orientation, no neck that can never heal, and
+// dihedral angles with every neighbour in S below theta_sliver. Also computes the local smooth degree
+// (§3.1.3) over the neighbours the triangle would have.
+RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness) const {
+    const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
+    const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
+    const FaceCheck check = surface_.check_face(v, u, c.apex);
+    smoothness = dihedral_cosine(normal, normals_[Surface::face_of(c.halfedge)]);
+    switch (check.verdict) {
+    case FaceCheck::edge_nonmanifold: return Verdict::edge_nonmanifold;
+    case FaceCheck::orientation: return Verdict::orientation;
+    case FaceCheck::bowtie: return Verdict::bowtie;
+    case FaceCheck::valid: break;
+    }
+    double cos_sum = 0;
+    uint32_t neighbours = 0;
+    bool too_sharp = false;
+    for (uint32_t shared : check.shared) {
+        if (shared == NO_HALFEDGE) continue;
+        const double cos_theta = dihedral_cosine(normal, normals_[Surface::face_of(shared)]);
+        too_sharp = too_sharp || cos_theta <= cos_sliver_;
         cos_sum += cos_theta;
         ++neighbours;
-        shares_edge = true;
     }
     smoothness = cos_sum / neighbours;
-    // Touching S only at the apex would pinch two fans together at it.
-    return shares_edge ? Verdict::valid : Verdict::bowtie;
+    if (too_sharp) return Verdict::dihedral;
+    // Touching S at a vertex alone pinches it: needed where two fronts meet, but only once nothing better is left.
+    return check.pinches > 0 ? Verdict::pinch : Verdict::valid;
 }
 
 // §4: a candidate much larger than the triangles of S spans an opening of an open surface.
@@ -272,8 +272,7 @@ dbrg_status RegionGrower::propose(uint32_t halfedge, double after_radius, uint32
     Candidate c;
     ++versions_[halfedge];
     if (!select_candidate(halfedge, after_radius, after_apex, c)) return DBRG_OK;
-    bool apex_on_boundary;
-    examine(c, c.smoothness, apex_on_boundary);
+    examine(c, c.smoothness);
     c.version = versions_[halfedge];
     c.postponed = 0;
     return queue_.push(c) ? DBRG_OK : context_.fail_out_of_memory();
@@ -293,6 +292,36 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     }
     for (uint32_t i = 0; i < 3; ++i) {
         if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, -HUGE_VAL, 0));
+    }
+    return DBRG_OK;
+}
+
+// A vertex still pinched when growing stops keeps its largest fan; the faces of the others go, leaving
+// holes for hole filling. Removing a face can pinch one of its other corners, so repeat until none is.
+dbrg_status RegionGrower::resolve_pinches() {
+    Array<uint32_t> doomed(context_.memory);
+    while (surface_.pinched_vertex_count() > 0) {
+        const uint32_t v = surface_.first_pinched_vertex();
+        uint32_t largest = NO_HALFEDGE, largest_size = 0;
+        surface_.for_each_fan(v, [&](uint32_t start) {
+            const uint32_t size = surface_.fan_size(start);
+            if (size > largest_size || (size == largest_size && start < largest)) {
+                largest = start;
+                largest_size = size;
+            }
+        });
+        doomed.clear();
+        bool grown = true;
+        surface_.for_each_fan(v, [&](uint32_t start) {
+            if (start == largest) return;
+            for (uint32_t h = start; h != NO_HALFEDGE; h = surface_.rotate(h)) grown = grown && doomed.push_back(Surface::face_of(h));
+        });
+        if (!grown) return context_.fail_out_of_memory();
+        for (uint32_t f : doomed) {
+            radius_sum_ -= radii_[f];
+            if (!surface_.remove_face(f)) return context_.fail_out_of_memory();
+        }
+        context_.stats.pinch_faces_removed += static_cast<uint32_t>(doomed.size());
     }
     return DBRG_OK;
 }

@@ -38,18 +38,20 @@ public:
     double face_radius(uint32_t f) const { return radii_[f]; }
 
 private:
-    enum class Verdict { valid, edge_nonmanifold, orientation, bowtie, dihedral };
+    enum class Verdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral };
 
     dbrg_status grow_component();
     dbrg_status drain_queue();
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
     bool select_candidate(uint32_t halfedge, double after_radius, uint32_t after_apex, Candidate& out) const;
-    Verdict examine(const Candidate& candidate, double& smoothness, bool& apex_on_boundary) const;
+    Verdict examine(const Candidate& candidate, double& smoothness) const;
     bool passes_boundary_test(const Candidate& candidate) const;
     double local_mean_radius(uint32_t halfedge) const;
     dbrg_status propose(uint32_t halfedge, double after_radius, uint32_t after_apex);
     dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
-    dbrg_status reject(Candidate candidate, Verdict verdict, bool apex_on_boundary);
+    dbrg_status postpone(Candidate candidate);
+    dbrg_status reject(const Candidate& candidate, Verdict verdict);
+    dbrg_status resolve_pinches();
     void remove_component(uint32_t first_face);
 
     const Tetrahedralization& delaunay_;

@@ -1,4 +1,5 @@
-// Surface: the growing triangulated surface S (paper §2.2) as an array-based half-edge structure.
+// Surface: the growing triangulated surface S (paper §2.2) as an array-based half-edge structure, with the
+// topological examination (§3.2.1) of a face before it is added.
 #include "surface/surface.h"
 
 #include <stdio.h>
@@ -7,25 +8,76 @@
 
 namespace dbrg {
 
-Surface::Surface(Memory& memory) : corners_(memory), twins_(memory), tets_(memory), vertex_halfedge_(memory) {}
+Surface::Surface(Memory& memory)
+    : corners_(memory), twins_(memory), tets_(memory), vertex_halfedge_(memory), pinched_(memory), extra_fans_(memory) {}
 
 bool Surface::reset(uint32_t vertex_count) {
     corners_.clear();
     twins_.clear();
     tets_.clear();
+    extra_fans_.clear();
+    pinched_vertices_ = 0;
+    removed_faces_ = 0;
     vertex_halfedge_.clear();
-    return vertex_halfedge_.resize(vertex_count, NO_HALFEDGE);
+    pinched_.clear();
+    return vertex_halfedge_.resize(vertex_count, NO_HALFEDGE) && pinched_.resize(vertex_count, 0);
 }
 
 uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
-    const uint32_t start = vertex_halfedge_[a];
-    if (start == NO_HALFEDGE) return NO_HALFEDGE;
-    uint32_t h = start;
-    do {
-        if (target(h) == b) return h;
-        h = rotate(h);
-    } while (h != NO_HALFEDGE && h != start);
-    return NO_HALFEDGE;
+    uint32_t found = NO_HALFEDGE;
+    for_each_fan(a, [&](uint32_t start) {
+        uint32_t h = start;
+        do {
+            if (target(h) == b) found = h;
+            h = rotate(h);
+        } while (found == NO_HALFEDGE && h != NO_HALFEDGE && h != start);
+    });
+    return found;
+}
+
+uint32_t Surface::fan_exit(uint32_t incoming_boundary) const {
+    uint32_t h = next(incoming_boundary);
+    while (twins_[h] != NO_HALFEDGE) h = next(twins_[h]);
+    return h;
+}
+
+FaceCheck Surface::check_face(uint32_t a, uint32_t b, uint32_t c) const {
+    FaceCheck check;
+    const uint32_t corners[3] = {a, b, c};
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t x = corners[i], y = corners[(i + 1) % 3];
+        const uint32_t same = find_halfedge(x, y);
+        if (same != NO_HALFEDGE) {
+            check.verdict = is_boundary(same) ? FaceCheck::orientation : FaceCheck::edge_nonmanifold;
+            return check;
+        }
+        const uint32_t reverse = find_halfedge(y, x);
+        if (reverse != NO_HALFEDGE && !is_boundary(reverse)) {
+            check.verdict = FaceCheck::edge_nonmanifold;
+            return check;
+        }
+        check.shared[i] = reverse;
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t p = corners[i];
+        if (!is_used(p)) continue;
+        // At p the face leaves along edge i and arrives along edge i + 2; their reverses in S, if any, are
+        // the boundary half-edges entering the fan X it joins and leaving the fan Y it joins.
+        const uint32_t entering_x = check.shared[i];
+        const uint32_t leaving_y = check.shared[(i + 2) % 3];
+        if (entering_x == NO_HALFEDGE && leaving_y == NO_HALFEDGE) {
+            if (!is_boundary_vertex(p)) {
+                check.verdict = FaceCheck::bowtie;  // p's only fan is closed
+                return check;
+            }
+            ++check.pinches;
+        } else if (entering_x != NO_HALFEDGE && leaving_y != NO_HALFEDGE && fan_exit(entering_x) == leaving_y &&
+                   is_pinched(p)) {
+            check.verdict = FaceCheck::bowtie;  // it would close one fan of a pinched vertex
+            return check;
+        }
+    }
+    return check;
 }
 
 uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
@@ -33,72 +85,178 @@ uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
     if (!corners_.reserve(corners_.size() + 3) || !twins_.reserve(twins_.size() + 3) || !tets_.reserve(tets_.size() + 1)) {
         return NO_FACE;
     }
-    corners_.push_back(a);
-    corners_.push_back(b);
-    corners_.push_back(c);
-    for (int i = 0; i < 3; ++i) twins_.push_back(NO_HALFEDGE);
+    const uint32_t corners[3] = {a, b, c};
+    uint32_t shared[3], closes[3];
+    for (uint32_t i = 0; i < 3; ++i) shared[i] = find_halfedge(corners[(i + 1) % 3], corners[i]);
+    for (uint32_t i = 0; i < 3; ++i) {
+        // Whether the fan entered through shared[i] is the one left through shared[i + 2]: the face closes it.
+        closes[i] = shared[i] != NO_HALFEDGE && shared[(i + 2) % 3] != NO_HALFEDGE &&
+                    fan_exit(shared[i]) == shared[(i + 2) % 3];
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        corners_.push_back(corners[i]);
+        twins_.push_back(shared[i]);
+        if (shared[i] != NO_HALFEDGE) twins_[shared[i]] = 3 * f + i;
+    }
     tets_.push_back(tet);
-    for (uint32_t i = 0; i < 3; ++i) link_twins(3 * f + i);
-    for (uint32_t i = 0; i < 3; ++i) update_vertex_halfedge(3 * f + i);
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t p = corners[i], leaving = 3 * f + i;
+        const uint32_t entering_x = shared[i], leaving_y = shared[(i + 2) % 3];
+        if (entering_x == NO_HALFEDGE && leaving_y == NO_HALFEDGE) {
+            if (!add_fan(p, leaving)) return NO_FACE;
+        } else if (entering_x == NO_HALFEDGE) {
+            replace_fan(p, leaving_y, leaving);  // Y now ends at the new face
+        } else if (leaving_y != NO_HALFEDGE) {
+            if (closes[i]) {
+                replace_fan(p, leaving_y, leaving);  // any outgoing half-edge stands for a closed fan
+            } else {
+                drop_fan(p, leaving_y);  // X and Y are one fan now, ending where X ended
+            }
+        }
+    }
     return f;
 }
 
-void Surface::link_twins(uint32_t h) {
-    const uint32_t opposite = find_halfedge(target(h), origin(h));
-    if (opposite == NO_HALFEDGE) return;
-    twins_[h] = opposite;
-    twins_[opposite] = h;
-}
-
-// h is the new face's half-edge leaving v. With one fan per vertex, v's outgoing boundary half-edge
-// changes only when h itself is boundary (it becomes the new one) or when both of the new face's
-// half-edges at v are linked (the fan closed, and any outgoing half-edge will do).
-void Surface::update_vertex_halfedge(uint32_t h) {
-    const uint32_t v = origin(h);
-    if (vertex_halfedge_[v] == NO_HALFEDGE || is_boundary(h) || !is_boundary(prev(h))) vertex_halfedge_[v] = h;
+bool Surface::remove_face(uint32_t f) {
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t p = corner(f, i), leaving = 3 * f + i, arriving = prev(leaving);
+        const uint32_t after = twins_[leaving];    // the neighbour's half-edge into p across `leaving`
+        const uint32_t before = twins_[arriving];  // the neighbour's half-edge out of p across `arriving`
+        if (after == NO_HALFEDGE && before == NO_HALFEDGE) {
+            drop_fan(p, leaving);  // the face was a fan of its own
+        } else if (after == NO_HALFEDGE) {
+            replace_fan(p, leaving, before);  // the fan now ends one face earlier
+        } else if (before != NO_HALFEDGE) {
+            if (!is_boundary(vertex_halfedge_[p])) {
+                vertex_halfedge_[p] = before;  // the closed fan opens here
+            } else if (!add_fan(p, before)) {
+                return false;  // the open fan splits in two
+            }
+        }
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t h = 3 * f + i;
+        if (twins_[h] != NO_HALFEDGE) twins_[twins_[h]] = NO_HALFEDGE;
+        twins_[h] = REMOVED;
+    }
+    ++removed_faces_;
+    return true;
 }
 
 uint32_t Surface::truncate(uint32_t first_face) {
     uint32_t freed = 0;
     for (size_t h = 3 * size_t(first_face); h < corners_.size(); ++h) {
-        uint32_t& start = vertex_halfedge_[corners_[h]];
-        if (start != NO_HALFEDGE) ++freed;
-        start = NO_HALFEDGE;
+        const uint32_t v = corners_[h];
+        if (vertex_halfedge_[v] != NO_HALFEDGE) ++freed;
+        vertex_halfedge_[v] = NO_HALFEDGE;
+        if (pinched_[v]) {
+            pinched_[v] = 0;
+            --pinched_vertices_;
+        }
     }
+    size_t kept = 0;
+    for (const ExtraFan& fan : extra_fans_) {
+        if (vertex_halfedge_[fan.vertex] != NO_HALFEDGE) extra_fans_[kept++] = fan;
+    }
+    extra_fans_.shrink(kept);
+    for (uint32_t f = first_face; f < face_count(); ++f) removed_faces_ -= face_removed(f) ? 1 : 0;
     corners_.shrink(3 * size_t(first_face));
     twins_.shrink(3 * size_t(first_face));
     tets_.shrink(first_face);
     return freed;
 }
 
+bool Surface::add_fan(uint32_t v, uint32_t h) {
+    if (vertex_halfedge_[v] == NO_HALFEDGE) {
+        vertex_halfedge_[v] = h;
+        return true;
+    }
+    if (!extra_fans_.push_back(ExtraFan{v, h})) return false;
+    recount_pinch(v);
+    return true;
+}
+
+void Surface::replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h) {
+    if (vertex_halfedge_[v] == old_h) {
+        vertex_halfedge_[v] = new_h;
+        return;
+    }
+    for (ExtraFan& fan : extra_fans_) {
+        if (fan.vertex == v && fan.halfedge == old_h) fan.halfedge = new_h;
+    }
+}
+
+void Surface::drop_fan(uint32_t v, uint32_t h) {
+    size_t found = extra_fans_.size();
+    if (vertex_halfedge_[v] == h) {
+        // Promote another fan, if any, to be the vertex's first.
+        for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
+            if (extra_fans_[i].vertex == v) found = i;
+        }
+        vertex_halfedge_[v] = found < extra_fans_.size() ? extra_fans_[found].halfedge : NO_HALFEDGE;
+    } else {
+        for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
+            if (extra_fans_[i].vertex == v && extra_fans_[i].halfedge == h) found = i;
+        }
+    }
+    if (found == extra_fans_.size()) return;
+    extra_fans_[found] = extra_fans_.back();
+    extra_fans_.pop_back();
+    recount_pinch(v);
+}
+
+void Surface::recount_pinch(uint32_t v) {
+    bool has_extra = false;
+    for (const ExtraFan& fan : extra_fans_) has_extra = has_extra || fan.vertex == v;
+    if (has_extra != (pinched_[v] != 0)) {
+        pinched_vertices_ += has_extra ? 1 : uint32_t(-1);
+        pinched_[v] = has_extra ? 1 : 0;
+    }
+}
+
 bool Surface::validate(char* message, size_t capacity) const {
     const uint32_t faces = face_count();
     const uint32_t halfedges = 3 * faces;
+    uint32_t removed = 0;
     for (uint32_t f = 0; f < faces; ++f) {
+        if (face_removed(f)) {
+            ++removed;
+            continue;
+        }
         const uint32_t a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
         if (a == b || b == c || c == a || a >= vertex_count() || b >= vertex_count() || c >= vertex_count()) {
             snprintf(message, capacity, "face %u has corners %u %u %u", f, a, b, c);
             return false;
         }
-    }
-    for (uint32_t h = 0; h < halfedges; ++h) {
-        const uint32_t t = twins_[h];
-        if (t == NO_HALFEDGE) continue;
-        if (t >= halfedges || twins_[t] != h || origin(t) != target(h) || target(t) != origin(h)) {
-            snprintf(message, capacity, "half-edge %u and its twin %u do not match", h, t);
-            return false;
+        for (uint32_t h = 3 * f; h < 3 * f + 3; ++h) {
+            const uint32_t t = twins_[h];
+            if (t == NO_HALFEDGE) continue;
+            if (t >= halfedges || face_removed(face_of(t)) || twins_[t] != h || origin(t) != target(h) ||
+                target(t) != origin(h)) {
+                snprintf(message, capacity, "half-edge %u and its twin %u do not match", h, t);
+                return false;
+            }
         }
     }
-    // No directed edge twice (that would be an orientation clash or a third face on an edge), and an
-    // unlinked half-edge must not have a reverse partner anywhere.
+    if (removed != removed_faces_) {
+        snprintf(message, capacity, "%u faces are marked removed, %u counted", removed, removed_faces_);
+        return false;
+    }
+    // No directed edge twice (an orientation clash or a third face on an edge), and a boundary half-edge
+    // must not have a reverse partner anywhere.
     Array<uint64_t> directed(corners_.memory());
-    if (!directed.reserve(halfedges)) {
+    Array<uint32_t> faces_at_vertex(corners_.memory());
+    if (!directed.reserve(halfedges) || !faces_at_vertex.resize(vertex_count(), 0)) {
         snprintf(message, capacity, "out of memory while validating");
         return false;
     }
-    for (uint32_t h = 0; h < halfedges; ++h) directed.push_back(uint64_t(origin(h)) << 32 | target(h));
+    for (uint32_t h = 0; h < halfedges; ++h) {
+        if (face_removed(face_of(h))) continue;
+        directed.push_back(uint64_t(origin(h)) << 32 | target(h));
+        ++faces_at_vertex[origin(h)];
+    }
     std::sort(directed.begin(), directed.end());
-    for (uint32_t i = 1; i < halfedges; ++i) {
+    for (size_t i = 1; i < directed.size(); ++i) {
         if (directed[i] == directed[i - 1]) {
             snprintf(message, capacity, "edge %u->%u is used twice in the same direction",
                      uint32_t(directed[i] >> 32), uint32_t(directed[i]));
@@ -106,54 +264,41 @@ bool Surface::validate(char* message, size_t capacity) const {
         }
     }
     for (uint32_t h = 0; h < halfedges; ++h) {
-        if (!is_boundary(h)) continue;
-        const uint64_t reverse = uint64_t(target(h)) << 32 | origin(h);
-        if (std::binary_search(directed.begin(), directed.end(), reverse)) {
+        if (face_removed(face_of(h)) || !is_boundary(h)) continue;
+        if (std::binary_search(directed.begin(), directed.end(), uint64_t(target(h)) << 32 | origin(h))) {
             snprintf(message, capacity, "half-edge %u is not linked to its reverse", h);
             return false;
         }
     }
-    // One fan per vertex: rotating from vertex_halfedge reaches every face at the vertex.
-    Array<uint32_t> faces_at_vertex(corners_.memory());
-    if (!faces_at_vertex.resize(vertex_count(), 0)) {
-        snprintf(message, capacity, "out of memory while validating");
-        return false;
-    }
-    for (uint32_t h = 0; h < halfedges; ++h) ++faces_at_vertex[origin(h)];
+    // The recorded fans of each vertex hold all its faces: open fans start at their outgoing boundary
+    // half-edge, and a closed fan is the vertex's only fan.
+    uint32_t pinched = 0;
     for (uint32_t v = 0; v < vertex_count(); ++v) {
-        const uint32_t start = vertex_halfedge_[v];
-        if (start == NO_HALFEDGE) {
-            if (faces_at_vertex[v] != 0) {
-                snprintf(message, capacity, "vertex %u has faces but no half-edge", v);
-                return false;
+        uint32_t reached = 0, fans = 0;
+        bool well_formed = true;
+        for_each_fan(v, [&](uint32_t start) {
+            ++fans;
+            if (start >= halfedges || face_removed(face_of(start)) || origin(start) != v) {
+                well_formed = false;
+                return;
             }
-            continue;
-        }
-        if (start >= halfedges || origin(start) != v) {
-            snprintf(message, capacity, "vertex %u has a half-edge that does not leave it", v);
+            uint32_t h = start;
+            do {
+                ++reached;
+                h = rotate(h);
+            } while (h != NO_HALFEDGE && h != start && reached <= faces_at_vertex[v]);
+            if (h == NO_HALFEDGE ? !is_boundary(start) : fans > 1) well_formed = false;
+        });
+        pinched += fans > 1 ? 1 : 0;
+        if (!well_formed || reached != faces_at_vertex[v] || (fans > 1) != is_pinched(v)) {
+            snprintf(message, capacity, "vertex %u: %u recorded fans hold %u of its %u faces%s", v, fans, reached,
+                     faces_at_vertex[v], well_formed ? "" : ", and one does not start at a boundary half-edge");
             return false;
         }
-        uint32_t reached = 0;
-        bool boundary_seen = false;
-        uint32_t h = start;
-        do {
-            ++reached;
-            boundary_seen = boundary_seen || is_boundary(h);
-            h = rotate(h);
-        } while (h != NO_HALFEDGE && h != start && reached <= faces_at_vertex[v]);
-        if (h == NO_HALFEDGE && !is_boundary(start)) {
-            snprintf(message, capacity, "boundary vertex %u does not start at its outgoing boundary half-edge", v);
-            return false;
-        }
-        if (reached != faces_at_vertex[v]) {
-            snprintf(message, capacity, "vertex %u is non-manifold: one fan holds %u of its %u faces", v, reached,
-                     faces_at_vertex[v]);
-            return false;
-        }
-        if (boundary_seen && !is_boundary(start)) {
-            snprintf(message, capacity, "vertex %u has a boundary half-edge but does not point to it", v);
-            return false;
-        }
+    }
+    if (pinched != pinched_vertices_) {
+        snprintf(message, capacity, "%u vertices are pinched, %u counted", pinched, pinched_vertices_);
+        return false;
     }
     return true;
 }

@@ -1,8 +1,8 @@
-// Surface: the growing triangulated surface S (paper §2.2) as an array-based half-edge structure that
-// can only ever hold an oriented 2-manifold with boundary.
+// Surface: the growing triangulated surface S (paper §2.2) as an array-based half-edge structure, with the
+// topological examination (§3.2.1) of a face before it is added.
 //
 // Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
-// reconstruction from unorganized points", Computer-Aided Design 37 (2005), section 2.2.
+// reconstruction from unorganized points", Computer-Aided Design 37 (2005), sections 2.2 and 3.2.1.
 #pragma once
 
 #include <stdint.h>
@@ -14,13 +14,30 @@ namespace dbrg {
 constexpr uint32_t NO_HALFEDGE = UINT32_MAX;
 constexpr uint32_t NO_FACE = UINT32_MAX;
 
+// What adding a face would do to the topology of S.
+struct FaceCheck {
+    enum Verdict {
+        valid,
+        edge_nonmanifold,  // an edge would get a third face
+        orientation,       // an edge would be traversed twice in the same direction
+        bowtie,            // a vertex would be left with a closed fan and another one (a neck that can never heal)
+    } verdict = valid;
+    // Which of the face's half-edges (corner i to corner i + 1) would be linked to a boundary half-edge of S.
+    uint32_t shared[3] = {NO_HALFEDGE, NO_HALFEDGE, NO_HALFEDGE};
+    // Corners that S already uses but that the face would touch through no edge: each gets a new fan and
+    // is pinched (two sheets meet at it) until later faces join the fans.
+    uint32_t pinches = 0;
+};
+
 // Half-edge h = 3 f + i of face f runs from corner i to corner (i + 1) % 3; next and prev are implicit,
 // so a face costs its three corners, its three twins and the tetrahedron it was taken from.
 //
-// Invariant kept by every mutation: the faces around each vertex form a single fan (no bow-tie), every
-// edge has at most two faces, and two faces on an edge traverse it in opposite directions. A vertex on
-// the boundary therefore has exactly one outgoing and one incoming boundary half-edge, and
-// vertex_halfedge() of a boundary vertex is its outgoing boundary half-edge.
+// Invariants kept by every mutation: every edge has at most two faces and two faces on an edge traverse
+// it in opposite directions. The faces around a vertex form fans (maximal runs of faces joined through
+// edges at the vertex); a vertex normally has one, but while two fronts of the growing surface meet it can
+// have several open fans — a pinched vertex. A closed fan is always a vertex's only fan. Each open fan is
+// known by its outgoing boundary half-edge: vertex_halfedge() for the first, a short side list for the
+// others. Faces are never moved: removal leaves a hole in the numbering (face_removed).
 class Surface {
 public:
     explicit Surface(Memory& memory);
@@ -28,7 +45,9 @@ public:
     // Prepares per-vertex storage for vertices 0 .. vertex_count - 1. Returns false on allocation failure.
     bool reset(uint32_t vertex_count);
 
+    // Face slots, removed ones included.
     uint32_t face_count() const { return static_cast<uint32_t>(corners_.size() / 3); }
+    uint32_t live_face_count() const { return face_count() - removed_faces_; }
     uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_halfedge_.size()); }
 
     static uint32_t face_of(uint32_t h) { return h / 3; }
@@ -37,30 +56,51 @@ public:
     uint32_t origin(uint32_t h) const { return corners_[h]; }
     uint32_t target(uint32_t h) const { return corners_[next(h)]; }
     uint32_t twin(uint32_t h) const { return twins_[h]; }
+    // True for a half-edge with no face on its other side (a removed face's half-edges are not boundary).
     bool is_boundary(uint32_t h) const { return twins_[h] == NO_HALFEDGE; }
     uint32_t corner(uint32_t f, uint32_t i) const { return corners_[3 * size_t(f) + i]; }
     uint32_t face_tet(uint32_t f) const { return tets_[f]; }
+    bool face_removed(uint32_t f) const { return twins_[3 * size_t(f)] == REMOVED; }
 
-    // An outgoing half-edge of v (its outgoing boundary half-edge when v is on the boundary), or
+    // An outgoing half-edge of v, its first fan's outgoing boundary half-edge when v is on the boundary;
     // NO_HALFEDGE when v has no face.
     uint32_t vertex_halfedge(uint32_t v) const { return vertex_halfedge_[v]; }
     bool is_used(uint32_t v) const { return vertex_halfedge_[v] != NO_HALFEDGE; }
-    // True when v has faces and its fan is open.
-    bool is_boundary_vertex(uint32_t v) const {
-        return vertex_halfedge_[v] != NO_HALFEDGE && is_boundary(vertex_halfedge_[v]);
+    // True when v has faces and an open fan.
+    bool is_boundary_vertex(uint32_t v) const { return is_used(v) && is_boundary(vertex_halfedge_[v]); }
+    bool is_pinched(uint32_t v) const { return pinched_[v] != 0; }
+    uint32_t pinched_vertex_count() const { return pinched_vertices_; }
+    // Some pinched vertex, or NO_HALFEDGE when there is none.
+    uint32_t first_pinched_vertex() const { return extra_fans_.empty() ? NO_HALFEDGE : extra_fans_[0].vertex; }
+    // The number of faces in the open fan that starts at outgoing boundary half-edge `start`.
+    uint32_t fan_size(uint32_t start) const {
+        uint32_t size = 0;
+        for (uint32_t h = start; h != NO_HALFEDGE; h = rotate(h)) ++size;
+        return size;
     }
 
-    // The next outgoing half-edge of origin(h) turning one way around the vertex, or NO_HALFEDGE at the
-    // boundary. Starting from vertex_halfedge(v) it visits every outgoing half-edge of v.
+    // The next outgoing half-edge of origin(h), turning one way within h's fan, or NO_HALFEDGE past the
+    // fan's end. From a fan's outgoing boundary half-edge it visits the whole fan.
     uint32_t rotate(uint32_t h) const { return twins_[prev(h)]; }
+    // Calls visit(h) for the outgoing half-edge that starts each fan of v (none when v is unused).
+    template <class Visit>
+    void for_each_fan(uint32_t v, Visit&& visit) const;
 
     // The half-edge from a to b, or NO_HALFEDGE. O(degree of a).
     uint32_t find_halfedge(uint32_t a, uint32_t b) const;
+    // The outgoing boundary half-edge that ends the fan entered by the incoming boundary half-edge h.
+    uint32_t fan_exit(uint32_t incoming_boundary) const;
 
-    // Adds face (a, b, c), counter-clockwise, remembering tetrahedron `tet`. Links it with the existing
-    // boundary half-edges b->a, c->b, a->c. The caller must have checked (can_add_face) that the result
-    // stays an oriented manifold. Returns the face id, or NO_FACE on allocation failure.
+    // The topological examination of face (a, b, c), counter-clockwise, without changing anything.
+    FaceCheck check_face(uint32_t a, uint32_t b, uint32_t c) const;
+
+    // Adds face (a, b, c), remembering tetrahedron `tet`, linked to the boundary half-edges it shares.
+    // check_face must have found it valid. Returns the face id, or NO_FACE on allocation failure.
     uint32_t add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
+
+    // Removes face f; its neighbours' half-edges become boundary. May pinch a corner whose fan it split.
+    // Returns false on allocation failure.
+    bool remove_face(uint32_t f);
 
     // Removes faces first_face .. face_count() - 1, which must share no edge or vertex with earlier faces
     // (a component grown last). Returns how many vertices that frees.
@@ -69,14 +109,38 @@ public:
     // Checks every invariant above from scratch. On failure writes a sentence into message.
     bool validate(char* message, size_t message_capacity) const;
 
+    // Marks removed faces in twins_[3 f]; never a half-edge id.
+    static constexpr uint32_t REMOVED = UINT32_MAX - 1;
+
 private:
-    void link_twins(uint32_t h);
-    void update_vertex_halfedge(uint32_t h);
+    struct ExtraFan {
+        uint32_t vertex;
+        uint32_t halfedge;  // the fan's outgoing boundary half-edge
+    };
+
+    bool add_fan(uint32_t v, uint32_t h);
+    void replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h);
+    void drop_fan(uint32_t v, uint32_t h);
+    void recount_pinch(uint32_t v);
 
     Array<uint32_t> corners_;          // 3 per face
     Array<uint32_t> twins_;            // 3 per face
     Array<uint32_t> tets_;             // 1 per face
     Array<uint32_t> vertex_halfedge_;  // 1 per vertex
+    Array<uint8_t> pinched_;           // 1 per vertex: has entries in extra_fans_
+    Array<ExtraFan> extra_fans_;       // second and later fans of pinched vertices
+    uint32_t pinched_vertices_ = 0;
+    uint32_t removed_faces_ = 0;
 };
+
+template <class Visit>
+void Surface::for_each_fan(uint32_t v, Visit&& visit) const {
+    if (vertex_halfedge_[v] == NO_HALFEDGE) return;
+    visit(vertex_halfedge_[v]);
+    if (!pinched_[v]) return;
+    for (const ExtraFan& fan : extra_fans_) {
+        if (fan.vertex == v) visit(fan.halfedge);
+    }
+}
 
 } // namespace dbrg

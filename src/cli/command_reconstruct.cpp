@@ -1,0 +1,227 @@
+// `dbrg reconstruct`: a surface from a point cloud file (or the built-in demo), written as a mesh file.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "cli/cli_args.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
+#include "cli/resource_usage.h"
+#include "dbrg/dbrg.h"
+#include "io/json_writer.h"
+#include "io/mesh_io.h"
+#include "samples/samples.h"
+
+namespace dbrg::cli {
+namespace {
+
+const char* const RECONSTRUCT_USAGE =
+    "usage: dbrg reconstruct INPUT -o OUTPUT [options]\n"
+    "       dbrg reconstruct --demo [--demo-shape NAME] [--demo-points N] -o OUTPUT [options]\n"
+    "\n"
+    "Reconstructs an oriented manifold triangle surface through the points of INPUT (.ply .obj .off .xyz\n"
+    ".pts; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with every\n"
+    "input point as a vertex, in input order.\n"
+    "\n"
+    "  -o, --output FILE        the mesh to write (required)\n"
+    "  --demo                   use a generated sample instead of INPUT\n"
+    "  --demo-shape NAME        sphere, torus, double_torus (default), bumpy_sphere, hemisphere,\n"
+    "                           open_cylinder, saddle, cube\n"
+    "  --demo-points N          about N points (default 20000)\n"
+    "  --boundary-factor M      open-surface test: refuse triangles larger than M times the mean\n"
+    "                           circumradius nearby; 0 turns it off (default 3)\n"
+    "  --boundary-mean local|global   the mean of that test: around the edge (default) or over the surface\n"
+    "  --sliver-angle DEG       largest dihedral angle between neighbouring triangles (default 150)\n"
+    "  --no-fill-holes          leave the holes that growing could not close\n"
+    "  --max-hole-edges N       holes with more boundary edges stay open (default 64)\n"
+    "  --max-components N       surfaces grown from separate seeds, at most (default 64)\n"
+    "  --backend builtin|tetgen the Delaunay tetrahedralization to use (default builtin)\n"
+    "  --stats-json FILE        write figures about the run as JSON (- for standard output)\n"
+    "  -q, --quiet              no progress bar\n"
+    "  -h, --help               show this help\n";
+
+bool parse_number(const std::string& text, double& value) {
+    char* end = nullptr;
+    value = std::strtod(text.c_str(), &end);
+    return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value);
+}
+
+bool parse_count(const std::string& text, uint32_t& value) {
+    double number;
+    if (!parse_number(text, number) || number < 0 || number > 4294967295.0 || number != std::floor(number)) return false;
+    value = uint32_t(number);
+    return true;
+}
+
+// Fills params from the options; returns false with a message for a malformed value.
+bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error) {
+    dbrg_params_init(&params);
+    double number;
+    if (args.has("--boundary-factor")) {
+        if (!parse_number(args.value("--boundary-factor"), number)) return error = "--boundary-factor takes a number", false;
+        params.boundary_factor = number;
+    }
+    if (args.has("--sliver-angle")) {
+        if (!parse_number(args.value("--sliver-angle"), number)) return error = "--sliver-angle takes a number of degrees", false;
+        params.sliver_angle = number * 3.14159265358979323846 / 180;
+    }
+    if (args.has("--boundary-mean")) {
+        const std::string mean = args.value("--boundary-mean");
+        if (mean != "local" && mean != "global") return error = "--boundary-mean takes local or global", false;
+        params.boundary_mean = mean == "local" ? DBRG_BOUNDARY_MEAN_LOCAL : DBRG_BOUNDARY_MEAN_GLOBAL;
+    }
+    if (args.has("--no-fill-holes")) params.fill_holes = 0;
+    if (args.has("--max-hole-edges") && !parse_count(args.value("--max-hole-edges"), params.max_hole_edges)) {
+        return error = "--max-hole-edges takes a whole number", false;
+    }
+    if (args.has("--max-components") && !parse_count(args.value("--max-components"), params.max_components)) {
+        return error = "--max-components takes a whole number", false;
+    }
+    if (args.has("--backend")) {
+        const std::string backend = args.value("--backend");
+        if (backend != "builtin" && backend != "tetgen") return error = "--backend takes builtin or tetgen", false;
+        params.backend = backend == "builtin" ? DBRG_BACKEND_BUILTIN : DBRG_BACKEND_TETGEN;
+    }
+    char message[256];
+    if (dbrg_params_validate(&params, message, sizeof message) != DBRG_OK) return error = message, false;
+    return true;
+}
+
+// The input points: the file's vertices, or the demo sample.
+bool load_points(const ParsedArgs& args, io::MeshData& points, std::string& error) {
+    if (!args.has("--demo")) {
+        const io::IoStatus status = io::read_mesh(args.positional[0], points);
+        if (!status) error = status.message;
+        return status.ok;
+    }
+    samples::Shape shape = samples::Shape::double_torus;
+    if (args.has("--demo-shape") && !samples::shape_from_name(args.value("--demo-shape"), shape)) {
+        return error = "unknown --demo-shape '" + args.value("--demo-shape") + "'", false;
+    }
+    uint32_t count = 20000;
+    if (args.has("--demo-points") && (!parse_count(args.value("--demo-points"), count) || count < 4)) {
+        return error = "--demo-points takes a whole number of at least 4", false;
+    }
+    points.positions = samples::sample(shape, count);
+    return true;
+}
+
+std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double seconds_read, double seconds_write) {
+    io::JsonObject json;
+    json.add_unsigned("points", s.input_points)
+        .add_unsigned("unique_points", s.unique_points)
+        .add_unsigned("duplicates_merged", s.duplicates_merged)
+        .add_unsigned("tetrahedra", s.tetrahedra)
+        .add_unsigned("triangles", s.triangles)
+        .add_unsigned("vertices_used", s.vertices_used)
+        .add_unsigned("boundary_edges", s.boundary_edges)
+        .add_unsigned("boundary_loops", dbrg_mesh_boundary_loop_count(mesh))
+        .add_unsigned("components", s.components)
+        .add_unsigned("pinch_faces_removed", s.pinch_faces_removed)
+        .add_unsigned("candidates_evaluated", s.candidates_evaluated)
+        .add_unsigned("rejected_edge_nonmanifold", s.rejected_edge_nonmanifold)
+        .add_unsigned("rejected_orientation", s.rejected_orientation)
+        .add_unsigned("rejected_bowtie", s.rejected_bowtie)
+        .add_unsigned("rejected_dihedral", s.rejected_dihedral)
+        .add_unsigned("rejected_boundary", s.rejected_boundary)
+        .add_unsigned("holes_found", s.holes_found)
+        .add_unsigned("holes_filled", s.holes_filled)
+        .add_unsigned("holes_left_open", s.holes_left_open)
+        .add_unsigned("hole_triangles_added", s.hole_triangles_added)
+        .add_unsigned("hole_triangles_removed", s.hole_triangles_removed)
+        .add_unsigned("predicate_calls", s.predicate_calls)
+        .add_unsigned("predicate_filter_failures", s.predicate_filter_failures)
+        .add_unsigned("predicate_perturbations", s.predicate_perturbations)
+        .add_number("seconds_read", seconds_read)
+        .add_number("seconds_validate", s.seconds_validate)
+        .add_number("seconds_sort", s.seconds_sort)
+        .add_number("seconds_delaunay", s.seconds_delaunay)
+        .add_number("seconds_growing", s.seconds_grow)
+        .add_number("seconds_fill_holes", s.seconds_fill_holes)
+        .add_number("seconds_output", s.seconds_output)
+        .add_number("seconds_total", s.seconds_total)
+        .add_number("seconds_write", seconds_write)
+        .add_unsigned("library_peak_bytes", s.peak_bytes)
+        .add_unsigned("peak_rss_bytes", peak_rss_bytes());
+    return json.str() + "\n";
+}
+
+} // namespace
+
+int run_reconstruct(int argc, char** argv) {
+    const std::vector<OptionSpec> options = {
+        {"--output", "-o", true},          {"--demo", nullptr, false},           {"--demo-shape", nullptr, true},
+        {"--demo-points", nullptr, true},  {"--boundary-factor", nullptr, true}, {"--boundary-mean", nullptr, true},
+        {"--sliver-angle", nullptr, true}, {"--no-fill-holes", nullptr, false},  {"--max-hole-edges", nullptr, true},
+        {"--max-components", nullptr, true}, {"--backend", nullptr, true},       {"--stats-json", nullptr, true},
+        {"--quiet", "-q", false},
+    };
+    ParsedArgs args;
+    std::string error;
+    if (!parse_args(argc, argv, options, args, error)) {
+        return report_error(EXIT_USAGE, "reconstruct: " + error + " (see 'dbrg reconstruct --help')");
+    }
+    if (args.help) {
+        std::fputs(RECONSTRUCT_USAGE, stdout);
+        return EXIT_OK;
+    }
+    const size_t inputs_expected = args.has("--demo") ? 0 : 1;
+    if (args.positional.size() != inputs_expected) {
+        return report_error(EXIT_USAGE, inputs_expected ? "reconstruct: expected one INPUT file (or --demo)"
+                                                        : "reconstruct: --demo takes no INPUT file");
+    }
+    if (!args.has("--output")) return report_error(EXIT_USAGE, "reconstruct: -o OUTPUT is required");
+    const std::string output = args.value("--output");
+    if (!io::format_from_path(output)) {
+        return report_error(EXIT_USAGE, "reconstruct: cannot tell the format of '" + output + "' (use .ply .obj .off .stl)");
+    }
+    dbrg_params params;
+    if (!read_params(args, params, error)) return report_error(EXIT_USAGE, "reconstruct: " + error);
+
+    double start = seconds_now();
+    io::MeshData mesh;
+    if (!load_points(args, mesh, error)) return report_error(EXIT_FAILED, error);
+    const double seconds_read = seconds_now() - start;
+
+    ProgressBar bar(!args.has("--quiet"));
+    params.progress = ProgressBar::callback;
+    params.progress_user = &bar;
+    const dbrg_points points{mesh.positions.data(), mesh.vertex_count(), 3 * sizeof(double), DBRG_FLOAT64};
+    dbrg_mesh* result = nullptr;
+    const dbrg_status status = dbrg_reconstruct(&points, &params, &result);
+    bar.finish();
+    if (status != DBRG_OK) {
+        const std::string message = result ? dbrg_mesh_message(result) : "out of memory";
+        dbrg_mesh_destroy(result);
+        return report_error(EXIT_FAILED, std::string(dbrg_status_string(status)) + ": " + message);
+    }
+
+    start = seconds_now();
+    const uint32_t* triangles = dbrg_mesh_triangles(result);
+    mesh.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(result)));
+    mesh.has_faces = true;
+    const io::IoStatus written = io::write_mesh(output, mesh);
+    const double seconds_write = seconds_now() - start;
+
+    dbrg_stats stats;
+    stats.struct_size = sizeof stats;
+    dbrg_mesh_stats(result, &stats);
+    std::string summary_error;
+    bool summary_ok = true;
+    if (args.has("--stats-json")) {
+        summary_ok = write_text_output(args.value("--stats-json"), stats_json(stats, result, seconds_read, seconds_write),
+                                       summary_error);
+    }
+    if (!args.has("--quiet") && written) {
+        std::fprintf(stderr, "dbrg: %u points -> %u triangles, %u boundary loops in %.3f s; wrote %s\n",
+                     stats.input_points, stats.triangles, dbrg_mesh_boundary_loop_count(result), stats.seconds_total,
+                     output.c_str());
+    }
+    dbrg_mesh_destroy(result);
+    if (!written) return report_error(EXIT_FAILED, written.message);
+    if (!summary_ok) return report_error(EXIT_FAILED, summary_error);
+    return EXIT_OK;
+}
+
+} // namespace dbrg::cli

@@ -1,0 +1,153 @@
+// End-to-end tests of dbrg_reconstruct: the manifold promise on every output, closed shapes closed with
+// the right genus, open shapes keeping their borders, and results independent of order, scale and type.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "dbrg/dbrg.h"
+#include "io/mesh_report.h"
+#include "samples/samples.h"
+#include "support/mesh_checks.h"
+
+using namespace dbrg;
+
+TEST_CASE("closed sample shapes come out as closed oriented manifolds of the right genus") {
+    const struct {
+        samples::Shape shape;
+        size_t points;
+    } cases[] = {
+        {samples::Shape::sphere, 2000},       {samples::Shape::bumpy_sphere, 5000},
+        {samples::Shape::torus, 4000},        {samples::Shape::double_torus, 8000},
+    };
+    for (const auto& c : cases) {
+        const samples::ShapeFacts facts = samples::facts(c.shape);
+        const std::string name = facts.name;
+        CAPTURE(name);
+        const std::vector<double> xyz = samples::sample(c.shape, c.points);
+        const test::Reconstruction result = test::reconstruct(xyz);
+        REQUIRE(result.status == DBRG_OK);
+        const io::MeshReport report = test::report_of(xyz, result.triangles);
+        test::require_valid_manifold(report);
+        CHECK(report.components == 1);
+        CHECK(report.edges_boundary == 0);
+        REQUIRE(report.genus.has_value());
+        CHECK(*report.genus == facts.genus);
+        CHECK(report.vertices == xyz.size() / 3);
+        CHECK(test::signed_volume(xyz, result.triangles) > 0);  // outward
+    }
+}
+
+TEST_CASE("open sample shapes keep their borders and bridge no opening") {
+    const samples::Shape shapes[] = {samples::Shape::hemisphere, samples::Shape::open_cylinder, samples::Shape::saddle};
+    for (samples::Shape shape : shapes) {
+        const samples::ShapeFacts facts = samples::facts(shape);
+        const std::string name = facts.name;
+        CAPTURE(name);
+        const std::vector<double> xyz = samples::sample(shape, 3000);
+        const test::Reconstruction result = test::reconstruct(xyz);
+        REQUIRE(result.status == DBRG_OK);
+        const io::MeshReport report = test::report_of(xyz, result.triangles);
+        test::require_valid_manifold(report);
+        CHECK(report.components == 1);
+        CHECK(report.boundary_loops == uint64_t(facts.boundary_loops));
+        CHECK(result.boundary_loops == uint32_t(facts.boundary_loops));
+        // A triangle across an opening would have an edge far longer than the sample spacing.
+        CHECK(test::longest_edge(xyz, result.triangles) < 4 * test::median_edge(xyz, result.triangles));
+    }
+}
+
+TEST_CASE("the same points in another order give the same triangles") {
+    std::vector<double> xyz = samples::sample(samples::Shape::torus, 3000);
+    const test::Reconstruction first = test::reconstruct(xyz);
+    REQUIRE(first.status == DBRG_OK);
+
+    std::vector<size_t> order(xyz.size() / 3);
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), std::mt19937(12345));
+    std::vector<double> shuffled(xyz.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        for (int k = 0; k < 3; ++k) shuffled[3 * i + k] = xyz[3 * order[i] + k];
+    }
+    const test::Reconstruction second = test::reconstruct(shuffled);
+    REQUIRE(second.status == DBRG_OK);
+    CHECK(test::triangles_by_position(xyz, first.triangles) == test::triangles_by_position(shuffled, second.triangles));
+}
+
+TEST_CASE("scaling or translating by a power of two keeps the connectivity") {
+    // Coordinates on a grid of 2^-30 so that adding 1024 is exact.
+    std::vector<double> xyz = samples::sample(samples::Shape::double_torus, 3000);
+    for (double& x : xyz) x = std::ldexp(std::round(std::ldexp(x, 30)), -30);
+    const test::Reconstruction reference = test::reconstruct(xyz);
+    REQUIRE(reference.status == DBRG_OK);
+    for (double scale : {0x1p-900, 0x1p-20, 0x1p+20, 0x1p+900}) {
+        CAPTURE(scale);
+        std::vector<double> scaled(xyz);
+        for (double& x : scaled) x *= scale;
+        const test::Reconstruction result = test::reconstruct(scaled);
+        REQUIRE(result.status == DBRG_OK);
+        CHECK(result.triangles == reference.triangles);
+    }
+    std::vector<double> moved(xyz);
+    for (double& x : moved) x += 1024.0;
+    const test::Reconstruction result = test::reconstruct(moved);
+    REQUIRE(result.status == DBRG_OK);
+    CHECK(result.triangles == reference.triangles);
+}
+
+TEST_CASE("float32 input gives the same mesh as the same values in float64") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::bumpy_sphere, 2000);
+    std::vector<float> as_float(xyz.begin(), xyz.end());
+    const std::vector<double> widened(as_float.begin(), as_float.end());
+    const test::Reconstruction from_double = test::reconstruct(widened);
+    dbrg_points points{as_float.data(), as_float.size() / 3, 3 * sizeof(float), DBRG_FLOAT32};
+    const test::Reconstruction from_float = test::reconstruct(points);
+    REQUIRE(from_double.status == DBRG_OK);
+    REQUIRE(from_float.status == DBRG_OK);
+    CHECK(from_double.triangles == from_float.triangles);
+}
+
+TEST_CASE("duplicated points are merged and refer to their first index") {
+    std::vector<double> xyz = samples::sample(samples::Shape::sphere, 500);
+    const size_t n = xyz.size() / 3;
+    xyz.insert(xyz.end(), xyz.begin(), xyz.begin() + 30);  // points 0..9 again, as n..n+9
+    const test::Reconstruction result = test::reconstruct(xyz);
+    REQUIRE(result.status == DBRG_OK);
+    CHECK(result.stats.duplicates_merged == 10);
+    CHECK(*std::max_element(result.triangles.begin(), result.triangles.end()) < n);
+}
+
+TEST_CASE("degenerate inputs fail with a status that names the problem") {
+    std::vector<double> plane;
+    for (int i = 0; i < 10; ++i) {
+        for (int j = 0; j < 10; ++j) plane.insert(plane.end(), {double(i), double(j), 5.0});
+    }
+    CHECK(test::reconstruct(plane).status == DBRG_ERR_DEGENERATE_INPUT);
+    std::vector<double> line;
+    for (int i = 0; i < 10; ++i) line.insert(line.end(), {double(i), 2.0 * i, 3.0 * i});
+    CHECK(test::reconstruct(line).status == DBRG_ERR_DEGENERATE_INPUT);
+    const std::vector<double> same(30, 1.5);
+    CHECK(test::reconstruct(same).status == DBRG_ERR_TOO_FEW_POINTS);
+}
+
+TEST_CASE("a lattice cube's surface, massively cospherical, is still a valid manifold") {
+    std::vector<double> xyz;
+    const int n = 12;
+    for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+            for (int k = 0; k <= n; ++k) {
+                if (i == 0 || j == 0 || k == 0 || i == n || j == n || k == n) xyz.insert(xyz.end(), {double(i), double(j), double(k)});
+            }
+        }
+    }
+    const test::Reconstruction result = test::reconstruct(xyz);
+    REQUIRE(result.status == DBRG_OK);
+    const io::MeshReport report = test::report_of(xyz, result.triangles);
+    test::require_valid_manifold(report);
+    MESSAGE("lattice cube: " << report.faces << " faces, " << report.edges_boundary << " boundary edges");
+}

@@ -1,0 +1,200 @@
+// Unit tests of the half-edge surface S: linking, fans, boundary bookkeeping, validation, truncation.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "surface/surface.h"
+
+using namespace dbrg;
+
+namespace {
+
+void require_valid(const Surface& surface) {
+    char message[200] = "";
+    const bool valid = surface.validate(message, sizeof message);
+    INFO(message);
+    REQUIRE(valid);
+}
+
+} // namespace
+
+TEST_CASE("an empty surface has no faces and unused vertices") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(4));
+    CHECK(surface.face_count() == 0);
+    CHECK_FALSE(surface.is_used(0));
+    CHECK(surface.find_halfedge(0, 1) == NO_HALFEDGE);
+    require_valid(surface);
+}
+
+TEST_CASE("faces are linked through their shared edges as they are added") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(6));
+    const uint32_t f0 = surface.add_face(0, 1, 2, 7);
+    require_valid(surface);
+    CHECK(surface.face_tet(f0) == 7);
+    for (uint32_t h = 0; h < 3; ++h) CHECK(surface.is_boundary(h));
+    CHECK(surface.is_boundary_vertex(0));
+
+    // (2, 1, 3) shares edge 1-2 in the opposite direction.
+    const uint32_t f1 = surface.add_face(2, 1, 3, 8);
+    require_valid(surface);
+    const uint32_t h12 = surface.find_halfedge(1, 2);
+    const uint32_t h21 = surface.find_halfedge(2, 1);
+    REQUIRE(h12 != NO_HALFEDGE);
+    REQUIRE(h21 != NO_HALFEDGE);
+    CHECK(Surface::face_of(h12) == f0);
+    CHECK(Surface::face_of(h21) == f1);
+    CHECK(surface.twin(h12) == h21);
+    CHECK(surface.find_halfedge(0, 3) == NO_HALFEDGE);
+    // The vertex half-edge of a boundary vertex is its outgoing boundary half-edge.
+    for (uint32_t v = 0; v < 4; ++v) {
+        CHECK(surface.is_boundary(surface.vertex_halfedge(v)));
+        CHECK(surface.origin(surface.vertex_halfedge(v)) == v);
+    }
+}
+
+TEST_CASE("a closed fan makes its centre an interior vertex") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(6));
+    // Centre 0 with the ring 1..5, each face attached to the previous one.
+    for (uint32_t i = 1; i <= 4; ++i) {
+        surface.add_face(0, i, i + 1, 0);
+        require_valid(surface);
+        CHECK(surface.is_boundary_vertex(0));
+    }
+    surface.add_face(0, 5, 1, 0);
+    require_valid(surface);
+    CHECK_FALSE(surface.is_boundary_vertex(0));
+    CHECK(surface.is_boundary_vertex(1));
+    // Rotation from the centre's half-edge visits its five outgoing half-edges and returns.
+    uint32_t h = surface.vertex_halfedge(0), steps = 0;
+    do {
+        CHECK(surface.origin(h) == 0);
+        h = surface.rotate(h);
+        ++steps;
+    } while (h != surface.vertex_halfedge(0) && steps < 10);
+    CHECK(steps == 5);
+}
+
+TEST_CASE("two fans at one vertex pinch it until a face joins them") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(5));
+    surface.add_face(0, 1, 2, 0);
+    CHECK(surface.check_face(0, 3, 4).pinches == 1);
+    surface.add_face(0, 3, 4, 0);
+    require_valid(surface);
+    CHECK(surface.is_pinched(0));
+    CHECK(surface.pinched_vertex_count() == 1);
+    CHECK(surface.first_pinched_vertex() == 0);
+    uint32_t fans = 0;
+    surface.for_each_fan(0, [&](uint32_t start) {
+        ++fans;
+        CHECK(surface.fan_size(start) == 1);
+    });
+    CHECK(fans == 2);
+    // Both edges of edge-face lookups work in either fan.
+    CHECK(surface.find_halfedge(0, 1) != NO_HALFEDGE);
+    CHECK(surface.find_halfedge(0, 3) != NO_HALFEDGE);
+    // (0, 2, 3) joins the fans through edges 0-2 and 3-0.
+    const FaceCheck join = surface.check_face(0, 2, 3);
+    CHECK(join.verdict == FaceCheck::valid);
+    CHECK(join.pinches == 0);
+    surface.add_face(0, 2, 3, 0);
+    require_valid(surface);
+    CHECK_FALSE(surface.is_pinched(0));
+    CHECK(surface.pinched_vertex_count() == 0);
+}
+
+TEST_CASE("check_face names what a face would break") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(8));
+    // A closed fan around 0 (ring 1..4) and a separate face (5, 6, 7).
+    for (uint32_t i = 1; i <= 3; ++i) surface.add_face(0, i, i + 1, 0);
+    surface.add_face(0, 4, 1, 0);
+    surface.add_face(5, 6, 7, 0);
+    require_valid(surface);
+    CHECK(surface.check_face(1, 2, 5).verdict == FaceCheck::orientation);       // 1->2 is used already
+    CHECK(surface.check_face(2, 1, 5).verdict == FaceCheck::valid);             // across the boundary edge 1-2
+    CHECK(surface.check_face(2, 1, 5).pinches == 1);                            // and touching 5 at a vertex
+    CHECK(surface.check_face(0, 5, 6).verdict == FaceCheck::orientation);       // 5->6 again
+    CHECK(surface.check_face(0, 6, 5).verdict == FaceCheck::bowtie);            // 0 is interior
+    CHECK(surface.check_face(1, 0, 5).verdict == FaceCheck::edge_nonmanifold);  // 0-1 has two faces
+}
+
+TEST_CASE("removing faces opens closed fans and splits open ones") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(6));
+    for (uint32_t i = 1; i <= 4; ++i) surface.add_face(0, i, i + 1, 0);
+    surface.add_face(0, 5, 1, 0);
+    CHECK_FALSE(surface.is_boundary_vertex(0));
+    REQUIRE(surface.remove_face(2));  // (0, 3, 4)
+    require_valid(surface);
+    CHECK(surface.face_removed(2));
+    CHECK(surface.live_face_count() == 4);
+    CHECK(surface.is_boundary_vertex(0));
+    CHECK_FALSE(surface.is_pinched(0));
+    REQUIRE(surface.remove_face(0));  // (0, 1, 2) joined (0, 2, 3) to the rest: now they are apart at 0
+    require_valid(surface);
+    CHECK(surface.is_pinched(0));
+    REQUIRE(surface.remove_face(4));  // (0, 5, 1): (0, 2, 3) and (0, 4, 5) are still apart
+    require_valid(surface);
+    CHECK(surface.is_pinched(0));
+    REQUIRE(surface.remove_face(1));
+    REQUIRE(surface.remove_face(3));
+    require_valid(surface);
+    CHECK_FALSE(surface.is_used(0));
+    CHECK(surface.pinched_vertex_count() == 0);
+}
+
+TEST_CASE("validate reports an edge used twice in the same direction") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(4));
+    surface.add_face(0, 1, 2, 0);
+    surface.add_face(0, 1, 3, 0);
+    char message[200];
+    CHECK_FALSE(surface.validate(message, sizeof message));
+}
+
+TEST_CASE("a tetrahedron's four faces close up") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(4));
+    surface.add_face(0, 2, 1, 0);
+    surface.add_face(0, 1, 3, 0);
+    surface.add_face(1, 2, 3, 0);
+    surface.add_face(2, 0, 3, 0);
+    require_valid(surface);
+    for (uint32_t h = 0; h < 12; ++h) CHECK_FALSE(surface.is_boundary(h));
+}
+
+TEST_CASE("truncate removes a separate last component and frees its vertices") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(8));
+    surface.add_face(0, 1, 2, 0);
+    surface.add_face(4, 5, 6, 0);
+    surface.add_face(6, 5, 7, 0);
+    CHECK(surface.truncate(1) == 4);
+    CHECK(surface.face_count() == 1);
+    CHECK_FALSE(surface.is_used(5));
+    CHECK(surface.is_used(0));
+    require_valid(surface);
+}
+
+TEST_CASE("allocation failure is reported, not hidden") {
+    dbrg_allocator refusing{[](void*, size_t) -> void* { return nullptr; },
+                            [](void*, void*, size_t, size_t) -> void* { return nullptr; },
+                            [](void*, void*, size_t) {}, nullptr};
+    Memory memory(&refusing);
+    Surface surface(memory);
+    CHECK_FALSE(surface.reset(4));
+    CHECK(memory.failed());
+}
