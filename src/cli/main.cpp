@@ -1,2 +1,65 @@
-// placeholder
-int main(){return 0;}
+// The dbrg program: dispatches to its subcommands and answers --help and --version.
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "cli/cli_args.h"
+#include "cli/commands.h"
+#include "dbrg/dbrg.h"
+
+namespace {
+
+using dbrg::cli::EXIT_OK;
+using dbrg::cli::EXIT_USAGE;
+
+struct Command {
+    const char* name;
+    int (*run)(int argc, char** argv);  // nullptr: not part of this build yet
+    const char* synopsis;
+};
+
+// To connect a command, put its run_ function in place of nullptr.
+const Command COMMANDS[] = {
+    {"reconstruct", nullptr, "INPUT -o OUTPUT [options]   reconstruct a surface from a point cloud"},
+    {"delaunay", nullptr, "INPUT [options]              Delaunay tetrahedralization of a point cloud"},
+    {"stats", dbrg::cli::run_stats, "MESH [--points INPUT]        JSON report on a triangle mesh"},
+};
+
+void print_usage(std::FILE* stream) {
+    std::fputs("usage: dbrg <command> [arguments]\n"
+               "\n"
+               "Surface reconstruction from unorganized 3D points by Delaunay-based region growing.\n"
+               "\n"
+               "commands:\n",
+               stream);
+    for (const Command& command : COMMANDS) std::fprintf(stream, "  %-12s %s\n", command.name, command.synopsis);
+    std::fputs("\n"
+               "Run 'dbrg <command> --help' for the options of a command.\n"
+               "  -h, --help     show this help\n"
+               "  --version      print the version of the dbrg library\n",
+               stream);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        print_usage(stderr);
+        return EXIT_USAGE;
+    }
+    const std::string first = argv[1];
+    if (first == "-h" || first == "--help" || first == "help") {
+        print_usage(stdout);
+        return EXIT_OK;
+    }
+    if (first == "--version") {
+        std::printf("dbrg %s\n", dbrg_version_string());
+        return EXIT_OK;
+    }
+    for (const Command& command : COMMANDS) {
+        if (first != command.name) continue;
+        if (!command.run) return dbrg::cli::report_error(EXIT_USAGE, "'" + first + "' is not available in this build yet");
+        return command.run(argc - 1, argv + 1);
+    }
+    return dbrg::cli::report_error(EXIT_USAGE, "unknown command '" + first + "' (see 'dbrg --help')");
+}

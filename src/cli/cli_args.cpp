@@ -1,0 +1,90 @@
+// Command-line helpers shared by the subcommands: option parsing, exit codes, error lines, output files.
+#include "cli/cli_args.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+namespace dbrg::cli {
+
+int report_error(int exit_code, const std::string& message) {
+    std::fprintf(stderr, "dbrg: %s\n", message.c_str());
+    return exit_code;
+}
+
+std::string ParsedArgs::value(const std::string& name, const std::string& fallback) const {
+    const auto found = values.find(name);
+    return found == values.end() ? fallback : found->second;
+}
+
+bool parse_args(int argc, char** argv, const std::vector<OptionSpec>& options, ParsedArgs& parsed, std::string& error) {
+    bool options_ended = false;
+    for (int i = 1; i < argc; ++i) {
+        std::string word = argv[i];
+        if (options_ended || word.size() < 2 || word[0] != '-') {
+            parsed.positional.push_back(word);
+            continue;
+        }
+        if (word == "--") {
+            options_ended = true;
+            continue;
+        }
+        if (word == "-h" || word == "--help") {
+            parsed.help = true;
+            continue;
+        }
+        std::string inline_value;
+        bool has_inline_value = false;
+        const size_t equals = word.find('=');
+        if (word.compare(0, 2, "--") == 0 && equals != std::string::npos) {
+            inline_value = word.substr(equals + 1);
+            word.resize(equals);
+            has_inline_value = true;
+        }
+        const OptionSpec* spec = nullptr;
+        for (const OptionSpec& option : options) {
+            if (word == option.name || (option.alias && word == option.alias)) spec = &option;
+        }
+        if (!spec) {
+            error = "unknown option '" + word + "'";
+            return false;
+        }
+        if (parsed.has(spec->name)) {
+            error = "option '" + std::string(spec->name) + "' given twice";
+            return false;
+        }
+        if (!spec->takes_value) {
+            if (has_inline_value) {
+                error = "option '" + word + "' takes no value";
+                return false;
+            }
+            parsed.values[spec->name] = "";
+        } else if (has_inline_value) {
+            parsed.values[spec->name] = inline_value;
+        } else if (i + 1 < argc) {
+            parsed.values[spec->name] = argv[++i];
+        } else {
+            error = "option '" + word + "' needs a value";
+            return false;
+        }
+    }
+    return true;
+}
+
+bool write_text_output(const std::string& path, const std::string& text, std::string& error) {
+    const bool to_stdout = path.empty() || path == "-";
+    std::FILE* file = to_stdout ? stdout : std::fopen(path.c_str(), "wb");
+    if (!file) {
+        error = path + ": " + std::strerror(errno);
+        return false;
+    }
+    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+    const bool closed = to_stdout ? std::fflush(file) == 0 : std::fclose(file) == 0;
+    if (!written || !closed) {
+        error = (to_stdout ? std::string("standard output") : path) + ": write error";
+        return false;
+    }
+    return true;
+}
+
+} // namespace dbrg::cli

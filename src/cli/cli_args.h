@@ -1,0 +1,42 @@
+// Command-line helpers shared by the subcommands: option parsing, exit codes, error lines, output files.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dbrg::cli {
+
+const int EXIT_OK = 0;
+const int EXIT_FAILED = 1;  // the command was understood but could not be carried out
+const int EXIT_USAGE = 2;   // the command line is wrong
+
+// Prints "dbrg: <message>" on stderr and returns `exit_code`.
+int report_error(int exit_code, const std::string& message);
+
+struct OptionSpec {
+    const char* name;   // "--points"
+    const char* alias;  // "-p", or nullptr
+    bool takes_value;
+};
+
+struct ParsedArgs {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> values;  // by OptionSpec::name; flags map to ""
+    bool help = false;                          // -h or --help was given
+
+    bool has(const std::string& name) const { return values.count(name) > 0; }
+    // The option's value, or `fallback` when it was not given.
+    std::string value(const std::string& name, const std::string& fallback = "") const;
+};
+
+// Parses argv[1..argc-1] (argv[0] is the command name) against `options`. Accepts "--name value",
+// "--name=value", "-h"/"--help", and "--" to end the options. Returns false with a message in `error`
+// for an unknown option, a missing value, or an option given twice.
+bool parse_args(int argc, char** argv, const std::vector<OptionSpec>& options, ParsedArgs& parsed, std::string& error);
+
+// Writes `text` to the file at `path`, or to stdout when path is empty or "-". Returns false with a
+// message in `error` when the file cannot be written.
+bool write_text_output(const std::string& path, const std::string& text, std::string& error);
+
+} // namespace dbrg::cli

@@ -1,0 +1,51 @@
+// The per-format readers and writers behind mesh_io.h, and the small helpers they share.
+//
+// Readers work on bytes already in memory, fill an empty MeshData and return a status whose message says
+// where the problem is (line or byte offset). Writers are handed a mesh whose indices are in range.
+#pragma once
+
+#include <charconv>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "io/mesh_io.h"
+
+namespace dbrg::io {
+
+IoStatus read_ply(std::string_view bytes, MeshData& out);
+IoStatus read_obj(std::string_view text, MeshData& out);
+IoStatus read_off(std::string_view text, MeshData& out);
+IoStatus read_xyz(std::string_view text, MeshData& out);
+IoStatus read_stl(std::string_view bytes, MeshData& out);
+
+void write_ply(const MeshData& mesh, bool binary, std::string& out);
+void write_obj(const MeshData& mesh, std::string& out);
+void write_off(const MeshData& mesh, std::string& out);
+void write_xyz(const MeshData& mesh, std::string& out);
+void write_stl(const MeshData& mesh, std::string& out);
+
+// Appends the shortest decimal text that reads back as exactly `value` (locale-independent).
+inline void append_double(std::string& out, double value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof text, value);
+    out.append(text, result.ptr);
+}
+
+inline void append_unsigned(std::string& out, uint64_t value) {
+    char text[24];
+    const auto result = std::to_chars(text, text + sizeof text, value);
+    out.append(text, result.ptr);
+}
+
+// Appends the triangles of a polygon fanned around its first corner.
+inline void append_fan(std::vector<uint32_t>& triangles, const uint32_t* corners, size_t count) {
+    for (size_t i = 2; i < count; ++i) {
+        triangles.push_back(corners[0]);
+        triangles.push_back(corners[i - 1]);
+        triangles.push_back(corners[i]);
+    }
+}
+
+} // namespace dbrg::io

@@ -1,0 +1,155 @@
+// The entry points of the I/O library: format choice, whole-file reading and writing, error boundary.
+#include "io/mesh_io.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <new>
+#include <stdexcept>
+
+#include "io/formats.h"
+
+namespace dbrg::io {
+namespace {
+
+std::string lower_extension(std::string_view path) {
+    const size_t dot = path.find_last_of('.');
+    const size_t slash = path.find_last_of("/\\");
+    if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash)) return {};
+    std::string extension(path.substr(dot + 1));
+    for (char& c : extension) {
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    return extension;
+}
+
+// Reads or writes may throw std::bad_alloc (a genuinely huge file) or length_error; both become statuses.
+template <class Action>
+IoStatus without_exceptions(Action&& action) {
+    try {
+        return action();
+    } catch (const std::bad_alloc&) {
+        return IoStatus::failure("out of memory");
+    } catch (const std::exception& error) {
+        return IoStatus::failure(std::string("unexpected error: ") + error.what());
+    }
+}
+
+IoStatus check_mesh(const MeshData& mesh) {
+    if (mesh.positions.size() % 3 != 0) return IoStatus::failure("the position array's length is not a multiple of 3");
+    if (mesh.triangles.size() % 3 != 0) return IoStatus::failure("the triangle array's length is not a multiple of 3");
+    if (mesh.triangle_count() > std::numeric_limits<uint32_t>::max()) return IoStatus::failure("too many triangles to write");
+    const size_t vertex_count = mesh.vertex_count();
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        if (mesh.triangles[i] >= vertex_count) {
+            return IoStatus::failure("triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(mesh.triangles[i]) +
+                                     ", but there are " + std::to_string(vertex_count));
+        }
+    }
+    return IoStatus::success();
+}
+
+} // namespace
+
+std::optional<MeshFormat> format_from_path(std::string_view path) {
+    const std::string extension = lower_extension(path);
+    if (extension == "ply") return MeshFormat::ply_binary;
+    if (extension == "obj") return MeshFormat::obj;
+    if (extension == "off") return MeshFormat::off;
+    if (extension == "xyz" || extension == "pts") return MeshFormat::xyz;
+    if (extension == "stl") return MeshFormat::stl;
+    return std::nullopt;
+}
+
+const char* format_name(MeshFormat format) {
+    switch (format) {
+    case MeshFormat::ply_binary: return "ply_binary";
+    case MeshFormat::ply_ascii: return "ply_ascii";
+    case MeshFormat::obj: return "obj";
+    case MeshFormat::off: return "off";
+    case MeshFormat::xyz: return "xyz";
+    case MeshFormat::stl: return "stl";
+    }
+    return "unknown";
+}
+
+IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, MeshData& out) {
+    out = MeshData();
+    if (!data && size > 0) return IoStatus::failure("no data (NULL buffer with a non-zero size)");
+    const std::string_view bytes(static_cast<const char*>(data), data ? size : 0);
+    IoStatus status = without_exceptions([&] {
+        switch (format) {
+        case MeshFormat::ply_binary:
+        case MeshFormat::ply_ascii: return read_ply(bytes, out);
+        case MeshFormat::obj: return read_obj(bytes, out);
+        case MeshFormat::off: return read_off(bytes, out);
+        case MeshFormat::xyz: return read_xyz(bytes, out);
+        case MeshFormat::stl: return read_stl(bytes, out);
+        }
+        return IoStatus::failure("unknown format");
+    });
+    if (!status) out = MeshData();
+    return status;
+}
+
+IoStatus read_mesh(const std::string& path, MeshData& out) {
+    out = MeshData();
+    const std::optional<MeshFormat> format = format_from_path(path);
+    if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts or .stl)");
+    std::string bytes;
+    IoStatus status = without_exceptions([&] {
+        std::FILE* file = std::fopen(path.c_str(), "rb");
+        if (!file) return IoStatus::failure(std::strerror(errno));
+        char chunk[1 << 16];
+        size_t got = 0;
+        while ((got = std::fread(chunk, 1, sizeof chunk, file)) > 0) bytes.append(chunk, got);
+        const bool failed = std::ferror(file) != 0;
+        std::fclose(file);
+        return failed ? IoStatus::failure(std::strerror(errno)) : IoStatus::success();
+    });
+    if (status) status = read_mesh_buffer(bytes.data(), bytes.size(), *format, out);
+    if (!status) status.message = path + ": " + status.message;
+    return status;
+}
+
+IoStatus write_mesh_buffer(const MeshData& mesh, MeshFormat format, std::string& out) {
+    IoStatus status = check_mesh(mesh);
+    if (!status) return status;
+    return without_exceptions([&] {
+        switch (format) {
+        case MeshFormat::ply_binary: write_ply(mesh, true, out); break;
+        case MeshFormat::ply_ascii: write_ply(mesh, false, out); break;
+        case MeshFormat::obj: write_obj(mesh, out); break;
+        case MeshFormat::off: write_off(mesh, out); break;
+        case MeshFormat::xyz: write_xyz(mesh, out); break;
+        case MeshFormat::stl: write_stl(mesh, out); break;
+        }
+        return IoStatus::success();
+    });
+}
+
+IoStatus write_mesh(const std::string& path, const MeshData& mesh, MeshFormat format) {
+    std::string bytes;
+    IoStatus status = write_mesh_buffer(mesh, format, bytes);
+    if (status) {
+        std::FILE* file = std::fopen(path.c_str(), "wb");
+        if (!file) {
+            status = IoStatus::failure(std::strerror(errno));
+        } else {
+            const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+            const bool closed = std::fclose(file) == 0;
+            if (!written || !closed) status = IoStatus::failure("write error (disk full?)");
+        }
+    }
+    if (!status) status.message = path + ": " + status.message;
+    return status;
+}
+
+IoStatus write_mesh(const std::string& path, const MeshData& mesh) {
+    const std::optional<MeshFormat> format = format_from_path(path);
+    if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts or .stl)");
+    return write_mesh(path, mesh, *format);
+}
+
+} // namespace dbrg::io

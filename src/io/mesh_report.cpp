@@ -1,0 +1,314 @@
+// Topology and quality figures of a triangle mesh: edge, vertex and component classification in O(F).
+#include "io/mesh_report.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <new>
+#include <vector>
+
+#include "io/dense_index.h"
+#include "io/json_writer.h"
+
+namespace dbrg::io {
+namespace {
+
+const uint32_t NO_FACE = UINT32_MAX;
+
+struct EdgeKeyHash {
+    uint64_t operator()(uint64_t key) const { return key; }
+};
+
+using Triple = std::array<uint64_t, 3>;
+
+struct TripleHash {
+    uint64_t operator()(const Triple& key) const { return key[0] ^ mix_bits(key[1] ^ mix_bits(key[2])); }
+};
+
+// Disjoint sets over 0..n-1 with path halving.
+class UnionFind {
+public:
+    explicit UnionFind(size_t n) : parent_(n) {
+        for (size_t i = 0; i < n; ++i) parent_[i] = static_cast<uint32_t>(i);
+    }
+    uint32_t root(uint32_t i) {
+        while (parent_[i] != i) {
+            parent_[i] = parent_[parent_[i]];
+            i = parent_[i];
+        }
+        return i;
+    }
+    void join(uint32_t a, uint32_t b) {
+        a = root(a);
+        b = root(b);
+        if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+
+private:
+    std::vector<uint32_t> parent_;
+};
+
+IoStatus check_arrays(const MeshData& mesh, const char* what) {
+    if (mesh.positions.size() % 3 != 0) return IoStatus::failure(std::string(what) + ": the position array's length is not a multiple of 3");
+    if (mesh.triangles.size() % 3 != 0) return IoStatus::failure(std::string(what) + ": the triangle array's length is not a multiple of 3");
+    if (mesh.vertex_count() >= UINT32_MAX || mesh.triangle_count() >= UINT32_MAX / 3) {
+        return IoStatus::failure(std::string(what) + ": too large for 32-bit indices");
+    }
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+        if (mesh.triangles[i] >= mesh.vertex_count()) {
+            return IoStatus::failure(std::string(what) + ": triangle " + std::to_string(i / 3) + " refers to vertex " +
+                                     std::to_string(mesh.triangles[i]) + ", but there are " + std::to_string(mesh.vertex_count()));
+        }
+    }
+    return IoStatus::success();
+}
+
+// The exact bit pattern of a position, with -0 made +0 so that equal coordinates give equal keys.
+Triple position_key(const std::vector<double>& positions, size_t vertex) {
+    Triple key;
+    for (size_t k = 0; k < 3; ++k) {
+        const double value = positions[3 * vertex + k] == 0.0 ? 0.0 : positions[3 * vertex + k];
+        std::memcpy(&key[k], &value, sizeof value);
+    }
+    return key;
+}
+
+Triple sorted_triple(uint64_t a, uint64_t b, uint64_t c) {
+    Triple key = {a, b, c};
+    std::sort(key.begin(), key.end());
+    return key;
+}
+
+bool has_zero_area(const std::vector<double>& p, const uint32_t* corner) {
+    const double* a = &p[3 * size_t(corner[0])];
+    const double* b = &p[3 * size_t(corner[1])];
+    const double* c = &p[3 * size_t(corner[2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    return u[1] * v[2] - u[2] * v[1] == 0.0 && u[2] * v[0] - u[0] * v[2] == 0.0 && u[0] * v[1] - u[1] * v[0] == 0.0;
+}
+
+// Per-edge record: how many proper faces use it and the first two of them with their directions.
+struct EdgeUse {
+    uint32_t count = 0;
+    uint32_t face[2] = {NO_FACE, NO_FACE};
+    bool ascending[2] = {false, false};  // the face runs from the smaller vertex index to the larger
+};
+
+uint32_t corner_of(const std::vector<uint32_t>& triangles, uint32_t face, uint32_t vertex) {
+    for (uint32_t k = 0; k < 3; ++k) {
+        if (triangles[3 * size_t(face) + k] == vertex) return 3 * face + k;
+    }
+    return 3 * face;  // unreachable: callers pass a corner vertex of the face
+}
+
+IoStatus compute(const MeshData& mesh, MeshReport& report) {
+    const std::vector<uint32_t>& triangles = mesh.triangles;
+    const size_t face_count = mesh.triangle_count();
+    const size_t vertex_count = mesh.vertex_count();
+    report = MeshReport();
+    report.faces = face_count;
+
+    std::vector<bool> proper(face_count, false);
+    DenseIndex<Triple, TripleHash> vertex_sets(face_count);
+    DenseIndex<uint64_t, EdgeKeyHash> edge_index(3 * face_count / 2 + 1);
+    std::vector<EdgeUse> edges;
+    edges.reserve(3 * face_count / 2 + 1);
+    std::vector<uint32_t> corner_edge(3 * face_count, UINT32_MAX);
+    std::vector<bool> vertex_used(vertex_count, false);
+    uint64_t proper_faces = 0;
+
+    for (size_t f = 0; f < face_count; ++f) {
+        const uint32_t* corner = &triangles[3 * f];
+        bool new_set = false;
+        vertex_sets.insert(sorted_triple(corner[0], corner[1], corner[2]), &new_set);
+        if (!new_set) ++report.duplicate_faces;
+        const bool repeated = corner[0] == corner[1] || corner[1] == corner[2] || corner[0] == corner[2];
+        if (repeated || has_zero_area(mesh.positions, corner)) ++report.degenerate_faces;
+        if (repeated) continue;
+        proper[f] = true;
+        ++proper_faces;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t from = corner[k], to = corner[(k + 1) % 3];
+            vertex_used[from] = true;
+            const uint64_t key = uint64_t(std::min(from, to)) << 32 | std::max(from, to);
+            const uint32_t id = edge_index.insert(key);
+            if (id == edges.size()) edges.emplace_back();
+            EdgeUse& use = edges[id];
+            if (use.count < 2) {
+                use.face[use.count] = static_cast<uint32_t>(f);
+                use.ascending[use.count] = from < to;
+            }
+            ++use.count;
+            corner_edge[3 * f + k] = id;
+        }
+    }
+
+    // Faces joined through any shared edge (one set per component); corners joined across manifold
+    // edges (one set per fan).
+    UnionFind components(face_count);
+    UnionFind fans(3 * face_count);
+    std::vector<uint32_t> boundary_corners;  // the two corners of each boundary edge, in its face
+    std::vector<bool> nonmanifold_vertex(vertex_count, false);
+    for (size_t f = 0; f < face_count; ++f) {
+        if (!proper[f]) continue;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const EdgeUse& use = edges[corner_edge[3 * f + k]];
+            components.join(static_cast<uint32_t>(f), use.face[0]);
+            // The rest looks at each edge once, from its first face.
+            if (use.face[0] != f) continue;
+            const uint32_t from = triangles[3 * f + k], to = triangles[3 * f + (k + 1) % 3];
+            if (use.count == 1) {
+                ++report.edges_boundary;
+                boundary_corners.push_back(static_cast<uint32_t>(3 * f + k));
+                boundary_corners.push_back(static_cast<uint32_t>(3 * f + (k + 1) % 3));
+            } else if (use.count == 2) {
+                ++report.edges_manifold;
+                if (use.ascending[0] == use.ascending[1]) report.oriented = false;
+                for (uint32_t vertex : {from, to}) {
+                    fans.join(corner_of(triangles, use.face[0], vertex), corner_of(triangles, use.face[1], vertex));
+                }
+            } else {
+                ++report.edges_nonmanifold;
+                nonmanifold_vertex[from] = nonmanifold_vertex[to] = true;
+            }
+        }
+    }
+
+    // Each fan is one set of corners with one root; a vertex with two roots among its corners is a bow-tie.
+    std::vector<bool> has_fan(vertex_count, false);
+    for (size_t f = 0; f < face_count; ++f) {
+        if (!proper[f]) continue;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t corner = static_cast<uint32_t>(3 * f + k);
+            if (fans.root(corner) != corner) continue;
+            const uint32_t vertex = triangles[corner];
+            if (has_fan[vertex]) nonmanifold_vertex[vertex] = true;
+            has_fan[vertex] = true;
+        }
+    }
+    // Boundary loops join boundary edges at their ends, each end being a fan rather than a vertex, so
+    // that the two loops of a bow-tie vertex stay apart.
+    UnionFind loops(3 * face_count);
+    std::vector<bool> on_loop(3 * face_count, false);
+    for (size_t i = 0; i < boundary_corners.size(); i += 2) {
+        const uint32_t a = fans.root(boundary_corners[i]), b = fans.root(boundary_corners[i + 1]);
+        loops.join(a, b);
+        on_loop[a] = on_loop[b] = true;
+    }
+    for (uint32_t node = 0; node < on_loop.size(); ++node) {
+        if (on_loop[node] && loops.root(node) == node) ++report.boundary_loops;
+    }
+    for (size_t v = 0; v < vertex_count; ++v) {
+        if (vertex_used[v]) ++report.vertices;
+        if (nonmanifold_vertex[v]) ++report.vertices_nonmanifold;
+    }
+    for (size_t f = 0; f < face_count; ++f) {
+        if (proper[f] && components.root(static_cast<uint32_t>(f)) == f) ++report.components;
+    }
+    report.vertices_isolated = vertex_count - report.vertices;
+    const uint64_t edge_count = edges.size();
+    report.euler_characteristic = int64_t(report.vertices) - int64_t(edge_count) + int64_t(proper_faces);
+    const bool closed_manifold = report.edges_boundary == 0 && report.edges_nonmanifold == 0 && report.vertices_nonmanifold == 0;
+    if (closed_manifold && report.oriented && report.components > 0) {
+        // chi is additive over components, and each closed oriented component has chi_c = 2 - 2 g_c.
+        report.genus = (2 * int64_t(report.components) - report.euler_characteristic) / 2;
+    }
+    return IoStatus::success();
+}
+
+template <class Action>
+IoStatus guarded(Action&& action) {
+    try {
+        return action();
+    } catch (const std::bad_alloc&) {
+        return IoStatus::failure("out of memory");
+    }
+}
+
+} // namespace
+
+IoStatus make_mesh_report(const MeshData& mesh, MeshReport& report) {
+    IoStatus status = check_arrays(mesh, "mesh");
+    if (!status) return status;
+    return guarded([&] { return compute(mesh, report); });
+}
+
+IoStatus add_face_recall(const MeshData& mesh, const MeshData& reference, MeshReport& report) {
+    IoStatus status = check_arrays(mesh, "mesh");
+    if (status) status = check_arrays(reference, "reference");
+    if (!status) return status;
+    return guarded([&] {
+        // Number the mesh's distinct positions, then describe each triangle by its set of position numbers.
+        DenseIndex<Triple, TripleHash> positions(mesh.vertex_count());
+        std::vector<uint32_t> position_of(mesh.vertex_count());
+        for (size_t v = 0; v < mesh.vertex_count(); ++v) position_of[v] = positions.insert(position_key(mesh.positions, v));
+        DenseIndex<Triple, TripleHash> triangles(mesh.triangle_count());
+        for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+            const uint32_t* c = &mesh.triangles[3 * t];
+            triangles.insert(sorted_triple(position_of[c[0]], position_of[c[1]], position_of[c[2]]));
+        }
+        uint64_t found = 0;
+        for (size_t t = 0; t < reference.triangle_count(); ++t) {
+            uint64_t ids[3];
+            bool all_present = true;
+            for (size_t k = 0; k < 3; ++k) {
+                ids[k] = positions.find(position_key(reference.positions, reference.triangles[3 * t + k]));
+                all_present = all_present && ids[k] != positions.NOT_FOUND;
+            }
+            if (all_present && triangles.find(sorted_triple(ids[0], ids[1], ids[2])) != triangles.NOT_FOUND) ++found;
+        }
+        report.reference_faces = reference.triangle_count();
+        report.face_recall.reset();
+        if (reference.triangle_count() > 0) report.face_recall = double(found) / double(reference.triangle_count());
+        return IoStatus::success();
+    });
+}
+
+IoStatus add_points_used(const MeshData& mesh, const MeshData& points, MeshReport& report) {
+    IoStatus status = check_arrays(mesh, "mesh");
+    if (!status) return status;
+    if (points.positions.size() % 3 != 0) return IoStatus::failure("points: the position array's length is not a multiple of 3");
+    return guarded([&] {
+        DenseIndex<Triple, TripleHash> used(mesh.vertex_count());
+        for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+            const uint32_t* c = &mesh.triangles[3 * t];
+            if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+            for (size_t k = 0; k < 3; ++k) used.insert(position_key(mesh.positions, c[k]));
+        }
+        uint64_t count = 0;
+        for (size_t p = 0; p < points.vertex_count(); ++p) {
+            if (used.find(position_key(points.positions, p)) != used.NOT_FOUND) ++count;
+        }
+        report.points_input = points.vertex_count();
+        report.points_used = count;
+        return IoStatus::success();
+    });
+}
+
+std::string to_json(const MeshReport& report) {
+    JsonObject json;
+    json.add_unsigned("faces", report.faces)
+        .add_unsigned("vertices", report.vertices)
+        .add_unsigned("vertices_isolated", report.vertices_isolated)
+        .add_unsigned("edges_manifold", report.edges_manifold)
+        .add_unsigned("edges_boundary", report.edges_boundary)
+        .add_unsigned("edges_nonmanifold", report.edges_nonmanifold)
+        .add_unsigned("vertices_nonmanifold", report.vertices_nonmanifold)
+        .add_unsigned("boundary_loops", report.boundary_loops)
+        .add_unsigned("components", report.components)
+        .add_bool("oriented", report.oriented)
+        .add_integer("euler_characteristic", report.euler_characteristic);
+    if (report.genus) json.add_integer("genus", *report.genus);
+    else json.add_null("genus");
+    json.add_unsigned("degenerate_faces", report.degenerate_faces).add_unsigned("duplicate_faces", report.duplicate_faces);
+    if (report.reference_faces) {
+        json.add_unsigned("reference_faces", *report.reference_faces);
+        if (report.face_recall) json.add_number("face_recall", *report.face_recall);
+        else json.add_null("face_recall");
+    }
+    if (report.points_input) json.add_unsigned("points_input", *report.points_input).add_unsigned("points_used", *report.points_used);
+    return json.str() + "\n";
+}
+
+} // namespace dbrg::io

@@ -1,0 +1,486 @@
+// PLY reader: ascii, binary little- and big-endian; vertex x/y/z, face lists and triangle strips.
+//
+// Every element and property other than vertex x/y/z, face vertex_indices (or vertex_index) and
+// tristrips vertex_indices is read past and ignored. Counts in the header are checked against the bytes
+// that follow before anything is reserved, so a lying header fails at once instead of allocating.
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "io/formats.h"
+#include "io/text_scan.h"
+
+namespace dbrg::io {
+namespace {
+
+enum class PlyType : uint8_t { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+
+struct PlyTypeName {
+    const char* name;
+    PlyType type;
+};
+
+const PlyTypeName PLY_TYPE_NAMES[] = {
+    {"char", PlyType::int8},     {"int8", PlyType::int8},       {"uchar", PlyType::uint8},
+    {"uint8", PlyType::uint8},   {"short", PlyType::int16},     {"int16", PlyType::int16},
+    {"ushort", PlyType::uint16}, {"uint16", PlyType::uint16},   {"int", PlyType::int32},
+    {"int32", PlyType::int32},   {"uint", PlyType::uint32},     {"uint32", PlyType::uint32},
+    {"float", PlyType::float32}, {"float32", PlyType::float32}, {"double", PlyType::float64},
+    {"float64", PlyType::float64},
+};
+
+bool find_type(std::string_view name, PlyType& type) {
+    for (const PlyTypeName& entry : PLY_TYPE_NAMES) {
+        if (name == entry.name) {
+            type = entry.type;
+            return true;
+        }
+    }
+    return false;
+}
+
+size_t type_size(PlyType type) {
+    switch (type) {
+    case PlyType::int8:
+    case PlyType::uint8: return 1;
+    case PlyType::int16:
+    case PlyType::uint16: return 2;
+    case PlyType::int32:
+    case PlyType::uint32:
+    case PlyType::float32: return 4;
+    case PlyType::float64: return 8;
+    }
+    return 8;
+}
+
+bool is_integer(PlyType type) { return type != PlyType::float32 && type != PlyType::float64; }
+
+// What the reader does with a property's values.
+enum class Role : uint8_t { skip, x, y, z, corners };
+
+struct Property {
+    std::string name;
+    PlyType type = PlyType::float32;  // of the value, or of each list item
+    bool is_list = false;
+    PlyType count_type = PlyType::uint8;
+    Role role = Role::skip;
+};
+
+enum class ElementKind : uint8_t { other, vertex, face, tristrips };
+
+struct Element {
+    std::string name;
+    ElementKind kind = ElementKind::other;
+    uint64_t count = 0;
+    std::vector<Property> properties;
+};
+
+enum class Encoding : uint8_t { ascii, binary_little, binary_big };
+
+struct Header {
+    Encoding encoding = Encoding::ascii;
+    std::vector<Element> elements;
+    size_t body_offset = 0;   // first byte after end_header's line
+    size_t header_lines = 0;  // lines up to and including end_header
+    uint32_t vertex_count = 0;
+    bool has_vertex_element = false;
+};
+
+IoStatus header_error(size_t line, const std::string& what) {
+    return IoStatus::failure("PLY header line " + std::to_string(line) + ": " + what);
+}
+
+ElementKind element_kind(std::string_view name) {
+    if (name == "vertex") return ElementKind::vertex;
+    if (name == "face") return ElementKind::face;
+    if (name == "tristrips") return ElementKind::tristrips;
+    return ElementKind::other;
+}
+
+// Decides what to do with a property from its element and name; rejects the forms the reader can't use.
+IoStatus assign_role(const Element& element, Property& property, size_t line) {
+    const std::string& name = property.name;
+    if (element.kind == ElementKind::vertex && (name == "x" || name == "y" || name == "z")) {
+        if (property.is_list) return header_error(line, "vertex property '" + name + "' is a list");
+        property.role = name == "x" ? Role::x : name == "y" ? Role::y : Role::z;
+    }
+    const bool corner_name = name == "vertex_indices" || (element.kind == ElementKind::face && name == "vertex_index");
+    if ((element.kind == ElementKind::face || element.kind == ElementKind::tristrips) && corner_name) {
+        if (!property.is_list) return header_error(line, "'" + name + "' of element '" + element.name + "' is not a list");
+        if (!is_integer(property.type)) return header_error(line, "the vertex indices of '" + element.name + "' are not integers");
+        property.role = Role::corners;
+    }
+    for (const Property& other : element.properties) {
+        if (other.name == name) return header_error(line, "element '" + element.name + "' has two properties named " + quote_token(name));
+    }
+    if (property.is_list && !is_integer(property.count_type)) {
+        return header_error(line, "the list count type of property " + quote_token(name) + " is not an integer type");
+    }
+    return IoStatus::success();
+}
+
+IoStatus parse_property(TokenSplitter& tokens, Element& element, size_t line) {
+    Property property;
+    std::string_view word;
+    if (!tokens.next(word)) return header_error(line, "'property' without a type");
+    if (word == "list") {
+        std::string_view count_type;
+        if (!tokens.next(count_type) || !tokens.next(word)) return header_error(line, "'property list' needs a count type and an item type");
+        if (!find_type(count_type, property.count_type)) return header_error(line, "unknown type " + quote_token(count_type));
+        property.is_list = true;
+    }
+    if (!find_type(word, property.type)) return header_error(line, "unknown type " + quote_token(word));
+    std::string_view name;
+    if (!tokens.next(name)) return header_error(line, "a property without a name");
+    property.name = std::string(name);
+    IoStatus status = assign_role(element, property, line);
+    if (!status) return status;
+    element.properties.push_back(std::move(property));
+    return IoStatus::success();
+}
+
+IoStatus parse_element(TokenSplitter& tokens, Header& header, size_t line) {
+    std::string_view name, count_text;
+    if (!tokens.next(name) || !tokens.next(count_text)) return header_error(line, "'element' needs a name and a count");
+    int64_t count = 0;
+    if (!parse_int64(count_text, count) || count < 0) {
+        return header_error(line, "the count of element " + quote_token(name) + " is not a non-negative integer: " + quote_token(count_text));
+    }
+    Element element;
+    element.name = std::string(name);
+    element.kind = element_kind(name);
+    element.count = static_cast<uint64_t>(count);
+    if (element.kind == ElementKind::vertex) {
+        if (header.has_vertex_element) return header_error(line, "a second 'vertex' element");
+        // Indices are 32-bit; UINT32_MAX stays free as a sentinel for users of the mesh.
+        if (element.count >= std::numeric_limits<uint32_t>::max()) {
+            return header_error(line, "element vertex declares " + std::to_string(element.count) + " vertices; at most 4294967294 are supported");
+        }
+        header.has_vertex_element = true;
+        header.vertex_count = static_cast<uint32_t>(element.count);
+    }
+    header.elements.push_back(std::move(element));
+    return IoStatus::success();
+}
+
+IoStatus parse_header(std::string_view bytes, Header& header) {
+    LineReader lines(bytes);
+    std::string_view line, word;
+    if (!lines.next(line) || strip_blanks(line) != "ply") {
+        return IoStatus::failure("PLY header line 1: the file does not begin with the line 'ply'");
+    }
+    bool have_format = false;
+    for (;;) {
+        if (!lines.next(line)) return header_error(lines.line_number(), "the header ends without 'end_header'");
+        const size_t number = lines.line_number();
+        TokenSplitter tokens(line);
+        if (!tokens.next(word)) continue;
+        if (word == "comment" || word == "obj_info") continue;
+        if (word == "end_header") break;
+        if (!have_format && word != "format") return header_error(number, "expected 'format' before " + quote_token(word));
+        IoStatus status;
+        if (word == "format") {
+            std::string_view encoding, version;
+            if (have_format) return header_error(number, "a second 'format' line");
+            if (!tokens.next(encoding) || !tokens.next(version)) return header_error(number, "'format' needs an encoding and a version");
+            if (encoding == "ascii") header.encoding = Encoding::ascii;
+            else if (encoding == "binary_little_endian") header.encoding = Encoding::binary_little;
+            else if (encoding == "binary_big_endian") header.encoding = Encoding::binary_big;
+            else return header_error(number, "unknown format " + quote_token(encoding));
+            if (version != "1.0" && version != "1") return header_error(number, "unsupported PLY version " + quote_token(version));
+            have_format = true;
+        } else if (word == "element") {
+            status = parse_element(tokens, header, number);
+        } else if (word == "property") {
+            if (header.elements.empty()) return header_error(number, "'property' before any 'element'");
+            status = parse_property(tokens, header.elements.back(), number);
+        } else {
+            return header_error(number, "unknown header keyword " + quote_token(word));
+        }
+        if (!status) return status;
+    }
+    if (!have_format) return header_error(lines.line_number(), "no 'format' line before end_header");
+    header.header_lines = lines.line_number();
+    header.body_offset = bytes.size() - lines.remaining();
+    for (const Element& element : header.elements) {
+        auto has_role = [&](Role role) {
+            for (const Property& property : element.properties) {
+                if (property.role == role) return true;
+            }
+            return false;
+        };
+        if (element.kind == ElementKind::vertex && !(has_role(Role::x) && has_role(Role::y) && has_role(Role::z))) {
+            return header_error(header.header_lines, "the vertex element lacks an x, y or z property");
+        }
+        if (element.kind != ElementKind::vertex && element.kind != ElementKind::other && !has_role(Role::corners)) {
+            return header_error(header.header_lines, "element '" + element.name + "' has no vertex_indices list");
+        }
+    }
+    if (!header.has_vertex_element) return header_error(header.header_lines, "the file has no 'vertex' element");
+    return IoStatus::success();
+}
+
+// Reads values from the binary body, in either byte order. Each read checks the bytes are there.
+class BinarySource {
+public:
+    BinarySource(std::string_view body, size_t body_offset, bool big_endian)
+        : data_(reinterpret_cast<const unsigned char*>(body.data())), size_(body.size()),
+          body_offset_(body_offset), big_endian_(big_endian) {}
+
+    bool read_number(PlyType type, double& value) {
+        if (!take(type)) return false;
+        value = decode_number(type);
+        return true;
+    }
+    bool read_integer(PlyType type, int64_t& value) {
+        if (!take(type)) return false;
+        value = static_cast<int64_t>(decode_number(type));
+        return true;
+    }
+    bool skip(PlyType type) { return take(type); }
+    // `count` was checked against list_limit, so the items are there.
+    bool skip_list_items(PlyType type, uint64_t count) {
+        position_ += static_cast<size_t>(count) * type_size(type);
+        return true;
+    }
+    // Whether `count` items of at least `min_bytes` each can still follow.
+    bool can_hold(uint64_t count, size_t, size_t min_bytes) const {
+        return min_bytes == 0 || count <= (size_ - position_) / min_bytes;
+    }
+    uint64_t list_limit(PlyType item_type) const { return (size_ - position_) / type_size(item_type); }
+    std::string where() const { return "PLY byte offset " + std::to_string(body_offset_ + value_start_); }
+    const std::string& error() const { return error_; }
+
+private:
+    bool take(PlyType type) {
+        const size_t size = type_size(type);
+        value_start_ = position_;
+        if (size > size_ - position_) return fail_truncated(size);
+        position_ += size;
+        return true;
+    }
+    bool fail_truncated(size_t wanted) {
+        error_ = "the file ends in the middle of the data (" + std::to_string(wanted) + " more bytes expected, " +
+                 std::to_string(size_ - position_) + " left)";
+        return false;
+    }
+    uint64_t load_bits(size_t size) const {
+        const unsigned char* bytes = data_ + value_start_;
+        uint64_t bits = 0;
+        for (size_t i = 0; i < size; ++i) bits |= uint64_t(bytes[big_endian_ ? size - 1 - i : i]) << (8 * i);
+        return bits;
+    }
+    double decode_number(PlyType type) const {
+        const uint64_t bits = load_bits(type_size(type));
+        switch (type) {
+        case PlyType::int8: return static_cast<int8_t>(static_cast<uint8_t>(bits));
+        case PlyType::uint8: return static_cast<uint8_t>(bits);
+        case PlyType::int16: return static_cast<int16_t>(static_cast<uint16_t>(bits));
+        case PlyType::uint16: return static_cast<uint16_t>(bits);
+        case PlyType::int32: return static_cast<int32_t>(static_cast<uint32_t>(bits));
+        case PlyType::uint32: return static_cast<uint32_t>(bits);
+        case PlyType::float32: {
+            const uint32_t narrow = static_cast<uint32_t>(bits);
+            float value;
+            std::memcpy(&value, &narrow, sizeof value);
+            return value;
+        }
+        case PlyType::float64: {
+            double value;
+            std::memcpy(&value, &bits, sizeof value);
+            return value;
+        }
+        }
+        return 0.0;
+    }
+
+    const unsigned char* data_;
+    size_t size_;
+    size_t body_offset_;
+    bool big_endian_;
+    size_t position_ = 0;
+    size_t value_start_ = 0;
+    std::string error_;
+};
+
+// Reads values from the ascii body: a stream of tokens, line breaks being mere separators.
+class AsciiSource {
+public:
+    AsciiSource(std::string_view body, size_t header_lines) : tokens_(body), header_lines_(header_lines) {}
+
+    bool read_number(PlyType, double& value) {
+        std::string_view token;
+        if (!next(token)) return false;
+        if (!parse_double(token, value)) return fail("expected a number, found " + quote_token(token));
+        return true;
+    }
+    bool read_integer(PlyType, int64_t& value) {
+        std::string_view token;
+        if (!next(token)) return false;
+        if (!parse_int64(token, value)) return fail("expected an integer, found " + quote_token(token));
+        return true;
+    }
+    bool skip(PlyType) {
+        std::string_view token;
+        return next(token);
+    }
+    bool skip_list_items(PlyType type, uint64_t count) {
+        for (uint64_t i = 0; i < count; ++i) {
+            if (!skip(type)) return false;
+        }
+        return true;
+    }
+    // A token takes at least one byte and all but the last one a separator too.
+    bool can_hold(uint64_t count, size_t min_tokens, size_t) const {
+        return min_tokens == 0 || count <= (tokens_.remaining_bytes() / 2 + 1) / min_tokens;
+    }
+    uint64_t list_limit(PlyType) const { return tokens_.remaining_bytes() / 2 + 1; }
+    std::string where() const { return "PLY line " + std::to_string(header_lines_ + tokens_.line_number()); }
+    const std::string& error() const { return error_; }
+
+private:
+    bool next(std::string_view& token) {
+        if (tokens_.next(token)) return true;
+        return fail("the file ends in the middle of the data");
+    }
+    bool fail(std::string message) {
+        error_ = std::move(message);
+        return false;
+    }
+
+    TokenStream tokens_;
+    size_t header_lines_;
+    std::string error_;
+};
+
+// Turns the corner lists of face and tristrips elements into triangles.
+class CornerDecoder {
+public:
+    CornerDecoder(uint32_t vertex_count, std::vector<uint32_t>& triangles)
+        : vertex_count_(vertex_count), triangles_(triangles) {}
+
+    void begin(ElementKind kind) {
+        kind_ = kind;
+        corners_.clear();
+    }
+    // Takes the next index of the current list; false (with a message) when it is out of range.
+    bool add(int64_t index, std::string& error) {
+        if (kind_ == ElementKind::tristrips && index == -1) {
+            corners_.clear();  // a strip restarts
+            return true;
+        }
+        if (index < 0 || index >= vertex_count_) {
+            error = "vertex index " + std::to_string(index) + " is out of range (the file has " +
+                    std::to_string(vertex_count_) + " vertices)";
+            return false;
+        }
+        corners_.push_back(static_cast<uint32_t>(index));
+        if (kind_ == ElementKind::tristrips && corners_.size() >= 3) emit_strip_triangle();
+        return true;
+    }
+    bool end(std::string& error) {
+        if (kind_ == ElementKind::tristrips) return true;
+        if (corners_.size() < 3) {
+            error = "a face with " + std::to_string(corners_.size()) + " corners; a face needs at least 3";
+            return false;
+        }
+        append_fan(triangles_, corners_.data(), corners_.size());
+        return true;
+    }
+
+private:
+    // Strip triangles alternate orientation; the ones with a repeated corner only join strip pieces.
+    void emit_strip_triangle() {
+        const size_t n = corners_.size();
+        uint32_t a = corners_[n - 3], b = corners_[n - 2];
+        const uint32_t c = corners_[n - 1];
+        if ((n - 3) % 2 == 1) std::swap(a, b);
+        if (a == b || b == c || a == c) return;
+        triangles_.insert(triangles_.end(), {a, b, c});
+    }
+
+    int64_t vertex_count_;
+    std::vector<uint32_t>& triangles_;
+    ElementKind kind_ = ElementKind::other;
+    std::vector<uint32_t> corners_;
+};
+
+// The least a single item of `element` occupies: bytes in a binary body, tokens in an ascii one.
+void minimum_item_size(const Element& element, size_t& bytes, size_t& tokens) {
+    bytes = 0;
+    tokens = element.properties.size();
+    for (const Property& property : element.properties) bytes += type_size(property.is_list ? property.count_type : property.type);
+}
+
+template <class Source>
+IoStatus read_body(const Header& header, Source& source, MeshData& out) {
+    auto fail = [&](const std::string& what) { return IoStatus::failure(source.where() + ": " + what); };
+    CornerDecoder corners(header.vertex_count, out.triangles);
+    std::string error;
+    for (const Element& element : header.elements) {
+        if (element.properties.empty() || element.count == 0) continue;
+        size_t min_bytes = 0, min_tokens = 0;
+        minimum_item_size(element, min_bytes, min_tokens);
+        if (!source.can_hold(element.count, min_tokens, min_bytes)) {
+            return fail("element '" + element.name + "' declares " + std::to_string(element.count) +
+                        " items, more than the rest of the file can hold");
+        }
+        const bool is_vertex = element.kind == ElementKind::vertex;
+        if (is_vertex) out.positions.reserve(3 * static_cast<size_t>(element.count));
+        for (uint64_t item = 0; item < element.count; ++item) {
+            double xyz[3] = {0.0, 0.0, 0.0};
+            corners.begin(element.kind);
+            for (const Property& property : element.properties) {
+                if (!property.is_list) {
+                    const bool wanted = property.role != Role::skip;
+                    const int axis = static_cast<int>(property.role) - static_cast<int>(Role::x);
+                    if (!(wanted ? source.read_number(property.type, xyz[axis]) : source.skip(property.type))) {
+                        return fail(source.error());
+                    }
+                    continue;
+                }
+                int64_t count = 0;
+                if (!source.read_integer(property.count_type, count)) return fail(source.error());
+                if (count < 0) return fail("negative list length " + std::to_string(count));
+                if (static_cast<uint64_t>(count) > source.list_limit(property.type)) {
+                    return fail("list length " + std::to_string(count) + " is more than the rest of the file can hold");
+                }
+                if (property.role != Role::corners) {
+                    if (!source.skip_list_items(property.type, static_cast<uint64_t>(count))) return fail(source.error());
+                    continue;
+                }
+                for (int64_t i = 0; i < count; ++i) {
+                    int64_t index = 0;
+                    if (!source.read_integer(property.type, index)) return fail(source.error());
+                    if (!corners.add(index, error)) return fail(element.name + " " + std::to_string(item) + ": " + error);
+                }
+            }
+            if (is_vertex) out.positions.insert(out.positions.end(), xyz, xyz + 3);
+            if (element.kind == ElementKind::face || element.kind == ElementKind::tristrips) {
+                if (!corners.end(error)) return fail(element.name + " " + std::to_string(item) + ": " + error);
+            }
+        }
+    }
+    return IoStatus::success();
+}
+
+} // namespace
+
+IoStatus read_ply(std::string_view bytes, MeshData& out) {
+    Header header;
+    IoStatus status = parse_header(bytes, header);
+    if (!status) return status;
+    for (const Element& element : header.elements) {
+        out.has_faces = out.has_faces || element.kind == ElementKind::face || element.kind == ElementKind::tristrips;
+    }
+    const std::string_view body = bytes.substr(header.body_offset);
+    if (header.encoding == Encoding::ascii) {
+        AsciiSource source(body, header.header_lines);
+        return read_body(header, source, out);
+    }
+    BinarySource source(body, header.body_offset, header.encoding == Encoding::binary_big);
+    return read_body(header, source, out);
+}
+
+} // namespace dbrg::io

@@ -1,0 +1,703 @@
+// Tests of the I/O library: round trips through every format, each reader on hand-written samples, and
+// hostile input (lying headers, truncation, garbage), which must fail with a message and never crash.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "io/mesh_io.h"
+
+using namespace dbrg::io;
+
+namespace {
+
+const MeshFormat ALL_FORMATS[] = {MeshFormat::ply_binary, MeshFormat::ply_ascii, MeshFormat::obj,
+                                  MeshFormat::off,        MeshFormat::xyz,       MeshFormat::stl};
+
+IoStatus read_text(std::string_view text, MeshFormat format, MeshData& out) {
+    return read_mesh_buffer(text.data(), text.size(), format, out);
+}
+
+// Reads text that must be accepted; fails the test with the reader's message otherwise.
+MeshData read_ok(std::string_view text, MeshFormat format) {
+    MeshData mesh;
+    const IoStatus status = read_text(text, format, mesh);
+    INFO(status.message);
+    CHECK(status.ok);
+    return mesh;
+}
+
+// Reads text that must be rejected with a message containing `expected`.
+void check_rejected(std::string_view text, MeshFormat format, const std::string& expected) {
+    MeshData mesh;
+    const IoStatus status = read_text(text, format, mesh);
+    INFO("message: ", status.message);
+    INFO("expected: ", expected);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.find(expected) != std::string::npos);
+    CHECK(mesh.positions.empty());
+    CHECK(mesh.triangles.empty());
+}
+
+std::vector<uint32_t> tris(std::initializer_list<uint32_t> indices) { return indices; }
+
+// Values in either byte order, for hand-built binary PLY and STL files.
+struct ByteWriter {
+    bool big_endian = false;
+    std::string bytes;
+
+    ByteWriter& text(std::string_view s) {
+        bytes.append(s);
+        return *this;
+    }
+    template <class T>
+    ByteWriter& put(T value) {
+        unsigned char raw[sizeof(T)];
+        std::memcpy(raw, &value, sizeof(T));
+        for (size_t i = 0; i < sizeof(T); ++i) bytes.push_back(static_cast<char>(raw[big_endian ? sizeof(T) - 1 - i : i]));
+        return *this;
+    }
+};
+
+// A mesh whose coordinates need all 17 significant digits, plus tiny, huge and subnormal values.
+MeshData awkward_mesh() {
+    MeshData mesh;
+    mesh.positions = {0.1, 1.0 / 3.0, -2.0 / 7.0, 1e-300, 1e300, 5e-324, 3.141592653589793, -0.0, 123456789.123456789,
+                      -1.0, 2.0, 0.30000000000000004};
+    mesh.triangles = {0, 1, 2, 0, 2, 3, 3, 2, 1};
+    mesh.has_faces = true;
+    return mesh;
+}
+
+// A mesh whose coordinates are exact in float32, for STL.
+MeshData float_exact_mesh() {
+    MeshData mesh;
+    mesh.positions = {0, 0, 0, 1.5, 0, 0, 0, 2.25, 0, 0, 0, -3.125};
+    mesh.triangles = {0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3};
+    mesh.has_faces = true;
+    return mesh;
+}
+
+// The corner positions of each triangle, which survive a renumbering of the vertices.
+std::vector<std::array<double, 9>> triangle_corners(const MeshData& mesh) {
+    std::vector<std::array<double, 9>> corners;
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        std::array<double, 9> c;
+        for (size_t k = 0; k < 3; ++k) {
+            for (size_t a = 0; a < 3; ++a) c[3 * k + a] = mesh.positions[3 * mesh.triangles[3 * t + k] + a];
+        }
+        corners.push_back(c);
+    }
+    return corners;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+std::string temp_path(const std::string& name) {
+    const char* dir = std::getenv("TMPDIR");
+    return std::string(dir ? dir : "/tmp") + "/dbrg_test_io_" + std::to_string(std::random_device()()) + "_" + name;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+const bool SANITIZED = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+const bool SANITIZED = true;
+#else
+const bool SANITIZED = false;
+#endif
+#else
+const bool SANITIZED = false;
+#endif
+
+} // namespace
+
+TEST_CASE("format_from_path knows the extensions in any letter case") {
+    CHECK(format_from_path("a/b/mesh.ply") == MeshFormat::ply_binary);
+    CHECK(format_from_path("MESH.PLY") == MeshFormat::ply_binary);
+    CHECK(format_from_path("x.obj") == MeshFormat::obj);
+    CHECK(format_from_path("x.Off") == MeshFormat::off);
+    CHECK(format_from_path("x.xyz") == MeshFormat::xyz);
+    CHECK(format_from_path("x.pts") == MeshFormat::xyz);
+    CHECK(format_from_path("x.stl") == MeshFormat::stl);
+    CHECK_FALSE(format_from_path("x.txt"));
+    CHECK_FALSE(format_from_path("noextension"));
+    CHECK_FALSE(format_from_path("dir.ply/noextension"));
+    CHECK_FALSE(format_from_path(""));
+    CHECK(std::string(format_name(MeshFormat::ply_ascii)) == "ply_ascii");
+}
+
+TEST_CASE("every format round-trips positions exactly") {
+    const MeshData mesh = awkward_mesh();
+    for (MeshFormat format : {MeshFormat::ply_binary, MeshFormat::ply_ascii, MeshFormat::obj, MeshFormat::off, MeshFormat::xyz}) {
+        CAPTURE(format_name(format));
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        MeshData back;
+        const IoStatus status = read_mesh_buffer(bytes.data(), bytes.size(), format, back);
+        INFO(status.message);
+        REQUIRE(status.ok);
+        CHECK(same_bits(back.positions, mesh.positions));
+        if (format == MeshFormat::xyz) {
+            CHECK(back.triangles.empty());
+            CHECK_FALSE(back.has_faces);
+        } else {
+            CHECK(back.triangles == mesh.triangles);
+            CHECK(back.has_faces);
+        }
+    }
+}
+
+TEST_CASE("STL round-trips float32 coordinates and the triangles' corners") {
+    const MeshData mesh = float_exact_mesh();
+    std::string bytes;
+    REQUIRE(write_mesh_buffer(mesh, MeshFormat::stl, bytes).ok);
+    CHECK(bytes.size() == 84 + 50 * mesh.triangle_count());
+    CHECK(bytes.compare(0, 5, "solid") != 0);
+    const MeshData back = read_ok(bytes, MeshFormat::stl);
+    CHECK(back.vertex_count() == 4);  // corners shared by several triangles are merged again
+    CHECK(triangle_corners(back) == triangle_corners(mesh));
+}
+
+TEST_CASE("binary PLY uses float32 when that is lossless, float64 otherwise") {
+    std::string bytes;
+    REQUIRE(write_mesh_buffer(float_exact_mesh(), MeshFormat::ply_binary, bytes).ok);
+    CHECK(bytes.find("property float x") != std::string::npos);
+    REQUIRE(write_mesh_buffer(awkward_mesh(), MeshFormat::ply_binary, bytes).ok);
+    CHECK(bytes.find("property double x") != std::string::npos);
+    const MeshData back = read_ok(bytes, MeshFormat::ply_binary);
+    CHECK(same_bits(back.positions, awkward_mesh().positions));
+}
+
+TEST_CASE("non-finite coordinates round-trip as they are") {
+    MeshData mesh;
+    const double inf = std::numeric_limits<double>::infinity();
+    mesh.positions = {std::nan(""), inf, -inf};
+    for (MeshFormat format : {MeshFormat::ply_binary, MeshFormat::ply_ascii, MeshFormat::obj, MeshFormat::off, MeshFormat::xyz}) {
+        CAPTURE(format_name(format));
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        const MeshData back = read_ok(bytes, format);
+        REQUIRE(back.positions.size() == 3);
+        CHECK(std::isnan(back.positions[0]));
+        CHECK(back.positions[1] == inf);
+        CHECK(back.positions[2] == -inf);
+    }
+}
+
+TEST_CASE("files round-trip through write_mesh and read_mesh") {
+    const MeshData mesh = float_exact_mesh();
+    for (const std::string extension : {".ply", ".obj", ".off", ".stl", ".xyz", ".pts"}) {
+        CAPTURE(extension);
+        const std::string path = temp_path("round" + extension);
+        REQUIRE(write_mesh(path, mesh).ok);
+        MeshData back;
+        const IoStatus status = read_mesh(path, back);
+        INFO(status.message);
+        REQUIRE(status.ok);
+        // STL numbers vertices in the order the triangles first use them.
+        if (extension != ".stl") CHECK(same_bits(back.positions, mesh.positions));
+        if (back.has_faces) CHECK(triangle_corners(back) == triangle_corners(mesh));
+        std::remove(path.c_str());
+    }
+    const std::string ascii = temp_path("ascii.ply");
+    REQUIRE(write_mesh(ascii, mesh, MeshFormat::ply_ascii).ok);
+    MeshData back;
+    REQUIRE(read_mesh(ascii, back).ok);
+    CHECK(back.triangles == mesh.triangles);
+    std::remove(ascii.c_str());
+}
+
+TEST_CASE("file errors name the path") {
+    MeshData mesh;
+    IoStatus status = read_mesh("/nonexistent/dir/mesh.ply", mesh);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.find("/nonexistent/dir/mesh.ply") != std::string::npos);
+    status = read_mesh("mesh.unknown", mesh);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.find("unknown file type") != std::string::npos);
+    status = write_mesh("/nonexistent/dir/out.obj", float_exact_mesh());
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.find("/nonexistent/dir/out.obj") != std::string::npos);
+    status = read_mesh("/", mesh);
+    CHECK_FALSE(status.ok);
+}
+
+TEST_CASE("writers refuse malformed meshes") {
+    MeshData mesh = float_exact_mesh();
+    mesh.triangles.push_back(7);
+    mesh.triangles.push_back(0);
+    mesh.triangles.push_back(1);
+    std::string bytes;
+    const IoStatus status = write_mesh_buffer(mesh, MeshFormat::obj, bytes);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.find("refers to vertex 7") != std::string::npos);
+    mesh.positions.push_back(1.0);
+    CHECK_FALSE(write_mesh_buffer(mesh, MeshFormat::off, bytes).ok);
+}
+
+TEST_CASE("ascii PLY with extra properties, elements, comments and polygons") {
+    const char* text =
+        "ply\r\n"
+        "format ascii 1.0\r\n"
+        "comment made by hand\r\n"
+        "obj_info anything\r\n"
+        "element vertex 5\r\n"
+        "property uchar red\r\n"
+        "property float x\r\n"
+        "property float y\r\n"
+        "property list uchar float extra\r\n"
+        "property double z\r\n"
+        "element face 2\r\n"
+        "property int flags\r\n"
+        "property list uchar int vertex_index\r\n"
+        "element edge 1\r\n"
+        "property int vertex1\r\n"
+        "property int vertex2\r\n"
+        "end_header\r\n"
+        "255 0 0 2 7 8 0\r\n"
+        "1 1 0 0 0.5\r\n"
+        "2 1 1 1 9 -1.5e2\r\n"
+        "3 0 1 0 +4\r\n"
+        "4 2 2 0 5\r\n"
+        "7 3 0 1 2\r\n"
+        "7 4 0 2 3 4\r\n"
+        "0 1\r\n";
+    const MeshData mesh = read_ok(text, MeshFormat::ply_ascii);
+    CHECK(mesh.positions == std::vector<double>{0, 0, 0, 1, 0, 0.5, 1, 1, -150, 0, 1, 4, 2, 2, 5});
+    CHECK(mesh.triangles == tris({0, 1, 2, 0, 2, 3, 0, 3, 4}));
+    CHECK(mesh.has_faces);
+}
+
+TEST_CASE("ascii PLY values may be laid out on any lines") {
+    const MeshData mesh = read_ok("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0\n0 0 1 0 3 0 1\n2\n",
+                                  MeshFormat::ply_ascii);
+    CHECK(mesh.vertex_count() == 3);
+    CHECK(mesh.triangles == tris({0, 1, 2}));
+}
+
+TEST_CASE("big-endian binary PLY with mixed property types") {
+    ByteWriter w;
+    w.big_endian = true;
+    w.text("ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty char tag\nproperty double x\nproperty short s\n"
+           "property double y\nproperty double z\nproperty list ushort uchar junk\n"
+           "element face 1\nproperty list ushort uint16 vertex_indices\nend_header\n");
+    const double coords[4][3] = {{0.1, 0.2, 0.3}, {-1.5, 2.5, 1e-10}, {7, 8, 9}, {1e100, -1e-100, 0}};
+    for (int v = 0; v < 4; ++v) {
+        w.put<int8_t>(-5).put<double>(coords[v][0]).put<int16_t>(-300).put<double>(coords[v][1]).put<double>(coords[v][2]);
+        w.put<uint16_t>(static_cast<uint16_t>(v));  // a junk list of v bytes
+        for (int j = 0; j < v; ++j) w.put<uint8_t>(0xEE);
+    }
+    w.put<uint16_t>(4).put<uint16_t>(3).put<uint16_t>(2).put<uint16_t>(1).put<uint16_t>(0);
+    const MeshData mesh = read_ok(w.bytes, MeshFormat::ply_binary);
+    REQUIRE(mesh.vertex_count() == 4);
+    for (int v = 0; v < 4; ++v) {
+        for (int k = 0; k < 3; ++k) CHECK(mesh.positions[3 * v + k] == coords[v][k]);
+    }
+    CHECK(mesh.triangles == tris({3, 2, 1, 3, 1, 0}));
+}
+
+TEST_CASE("little-endian binary PLY with float coordinates, int counts and trailing bytes") {
+    ByteWriter w;
+    w.text("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float32 x\nproperty float32 y\nproperty float32 z\n"
+           "property uint8 confidence\nelement face 1\nproperty list int32 int32 vertex_indices\nend_header\n");
+    for (int v = 0; v < 3; ++v) w.put<float>(0.25f * v).put<float>(-1.0f).put<float>(3.0f).put<uint8_t>(9);
+    w.put<int32_t>(3).put<int32_t>(0).put<int32_t>(1).put<int32_t>(2);
+    w.text("trailing bytes are ignored");
+    const MeshData mesh = read_ok(w.bytes, MeshFormat::ply_ascii);  // either PLY format reads any PLY
+    CHECK(mesh.positions == std::vector<double>{0, -1, 3, 0.25, -1, 3, 0.5, -1, 3});
+    CHECK(mesh.triangles == tris({0, 1, 2}));
+}
+
+TEST_CASE("PLY triangle strips alternate orientation, restart at -1, and drop joining triangles") {
+    const char* header = "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                         "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+    std::string text = header;
+    for (int v = 0; v < 8; ++v) text += std::to_string(v) + " " + std::to_string(v % 2) + " 0\n";
+    // 0 1 2 3 | restart | 4 5 6 6 7: the (5, 6, 6) and (6, 6, 7) triangles only join the pieces.
+    text += "11 0 1 2 3 -1 4 5 6 6 7 7\n";
+    const MeshData mesh = read_ok(text, MeshFormat::ply_ascii);
+    CHECK(mesh.triangles == tris({0, 1, 2, 2, 1, 3, 4, 5, 6}));
+    CHECK(mesh.has_faces);
+
+    std::string joined = header;
+    for (int v = 0; v < 8; ++v) joined += "0 0 " + std::to_string(v) + "\n";
+    // A single strip made of two pieces joined by repeating 3 and 4: 0 1 2 3 3 4 4 5 6.
+    joined += "9 0 1 2 3 3 4 4 5 6\n";
+    const MeshData strip = read_ok(joined, MeshFormat::ply_ascii);
+    // The second piece's first triangle sits at an even position of the strip, so it keeps its order.
+    CHECK(strip.triangles == tris({0, 1, 2, 2, 1, 3, 4, 5, 6}));
+}
+
+TEST_CASE("OBJ: v/vt/vn forms, negative indices, polygons, and everything else ignored") {
+    const char* text =
+        "# a comment\n"
+        "mtllib scene.mtl\n"
+        "o thing\n"
+        "v 0 0 0\n"
+        "v 1 0 0 1.0\n"
+        "v 1 1 0 0.5 0.5 0.5\n"
+        "v 0 1 0\n"
+        "vt 0 0\nvn 0 0 1\nvp 0.5\n"
+        "g group\nusemtl red\ns off\n"
+        "f 1 2 3\n"
+        "f 1/1 3/1 4/1 # trailing comment\n"
+        "f 1//1 2//1 3//1\n"
+        "f -4/1/1 -3/1/1 -2/1/1 -1/1/1\n"
+        "l 1 2\n"
+        "p 1\n"
+        "\n"
+        "v +2 -3 4e1\n"
+        "f -1 1 2\n";
+    const MeshData mesh = read_ok(text, MeshFormat::obj);
+    CHECK(mesh.positions == std::vector<double>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, -3, 40});
+    CHECK(mesh.triangles == tris({0, 1, 2, 0, 2, 3, 0, 1, 2, 0, 1, 2, 0, 2, 3, 4, 0, 1}));
+    CHECK(mesh.has_faces);
+}
+
+TEST_CASE("OBJ faces may name vertices defined further down") {
+    const MeshData mesh = read_ok("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", MeshFormat::obj);
+    CHECK(mesh.triangles == tris({0, 1, 2}));
+}
+
+TEST_CASE("OFF: comments, counts beside the keyword, colour columns, polygons") {
+    const char* text =
+        "# leading comment\n"
+        "COFF 4 2 0 # counts on the keyword line\n"
+        "\n"
+        "0 0 0 255 0 0 255\n"
+        "1 0 0 0 255 0 255\n"
+        "# between vertices\n"
+        "1 1 0 0 0 255 255\n"
+        "0 1 0 1 1 1 1\n"
+        "3 0 1 2 0.5 0.5 0.5\n"
+        "4 0 1 2 3\n";
+    const MeshData mesh = read_ok(text, MeshFormat::off);
+    CHECK(mesh.positions == std::vector<double>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+    CHECK(mesh.triangles == tris({0, 1, 2, 0, 1, 2, 0, 2, 3}));
+
+    const MeshData plain = read_ok("OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 2 1 0\n", MeshFormat::off);
+    CHECK(plain.triangles == tris({2, 1, 0}));
+    CHECK(read_ok("OFF\n0 0 0\n", MeshFormat::off).vertex_count() == 0);
+}
+
+TEST_CASE("XYZ and PTS: blanks or commas, extra columns, comments, a leading count") {
+    const MeshData xyz = read_ok("# x y z\n1 2 3\n4,5,6\n 7 , 8 ,9 , 100 200\n\n1e3\t2e3\t3e3 0.5\n// done\n", MeshFormat::xyz);
+    CHECK(xyz.positions == std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8, 9, 1000, 2000, 3000});
+    CHECK_FALSE(xyz.has_faces);
+    const MeshData pts = read_ok("2\n1 2 3 10 255 255 255\n4 5 6 11 0 0 0\n", MeshFormat::xyz);
+    CHECK(pts.positions == std::vector<double>{1, 2, 3, 4, 5, 6});
+}
+
+TEST_CASE("ascii STL, and a binary STL whose header begins with 'solid'") {
+    const char* text =
+        "solid cube_corner\n"
+        "  facet normal 0 0 -1\n"
+        "    outer loop\n"
+        "      vertex 0 0 0\n"
+        "      vertex 0 1 0\n"
+        "      vertex 1 0 0\n"
+        "    endloop\n"
+        "  endfacet\n"
+        "  facet normal 0 -1 0\n"
+        "    outer loop\n"
+        "      vertex 0 0 0\n"
+        "      vertex 1 0 0\n"
+        "      vertex 0 0 1\n"
+        "    endloop\n"
+        "  endfacet\n"
+        "endsolid cube_corner\n";
+    const MeshData mesh = read_ok(text, MeshFormat::stl);
+    CHECK(mesh.positions == std::vector<double>{0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1});
+    CHECK(mesh.triangles == tris({0, 1, 2, 0, 2, 3}));
+
+    std::string binary;
+    REQUIRE(write_mesh_buffer(float_exact_mesh(), MeshFormat::stl, binary).ok);
+    binary.replace(0, 5, "solid");
+    CHECK(read_ok(binary, MeshFormat::stl).triangle_count() == 4);
+}
+
+TEST_CASE("empty input") {
+    for (MeshFormat format : ALL_FORMATS) {
+        CAPTURE(format_name(format));
+        MeshData mesh;
+        const IoStatus status = read_mesh_buffer(nullptr, 0, format, mesh);
+        // Empty OBJ and XYZ files are valid and hold nothing; the other formats need a header.
+        if (format == MeshFormat::obj || format == MeshFormat::xyz) {
+            CHECK(status.ok);
+        } else {
+            CHECK_FALSE(status.ok);
+            CHECK_FALSE(status.message.empty());
+        }
+        CHECK(mesh.vertex_count() == 0);
+    }
+    MeshData mesh;
+    CHECK_FALSE(read_mesh_buffer(nullptr, 10, MeshFormat::obj, mesh).ok);
+}
+
+TEST_CASE("hostile PLY headers") {
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    check_rejected("plyx\n", MeshFormat::ply_binary, "does not begin with the line 'ply'");
+    check_rejected("ply\n", MeshFormat::ply_binary, "without 'end_header'");
+    check_rejected("ply\nend_header\n", MeshFormat::ply_binary, "no 'format' line");
+    check_rejected("ply\nformat ascii 2.0\nend_header\n", MeshFormat::ply_binary, "unsupported PLY version");
+    check_rejected("ply\nformat binary_middle_endian 1.0\nend_header\n", MeshFormat::ply_binary, "unknown format");
+    check_rejected("ply\nformat ascii 1.0\nformat ascii 1.0\nend_header\n", MeshFormat::ply_binary, "second 'format'");
+    check_rejected("ply\nelement vertex 1\n", MeshFormat::ply_binary, "expected 'format'");
+    check_rejected("ply\nformat ascii 1.0\nproperty float x\nend_header\n", MeshFormat::ply_binary, "before any 'element'");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex -3\n" + xyz + "end_header\n", MeshFormat::ply_binary, "non-negative integer");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 99999999999999999999999\n", MeshFormat::ply_binary, "non-negative integer");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 4294967295\n" + xyz + "end_header\n", MeshFormat::ply_binary, "at most 4294967294");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\n", MeshFormat::ply_binary, "unknown type 'quad'");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar\n", MeshFormat::ply_binary, "count type and an item type");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\nproperty float\n", MeshFormat::ply_binary, "without a name");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float x\n", MeshFormat::ply_binary, "two properties named 'x'");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n", MeshFormat::ply_binary, "lacks an x, y or z");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar float x\n", MeshFormat::ply_binary, "is a list");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "element vertex 1\n", MeshFormat::ply_binary, "second 'vertex'");
+    check_rejected("ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n3 0 0 0\n", MeshFormat::ply_binary,
+                   "no 'vertex' element");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "element face 1\nproperty list float int vertex_indices\n", MeshFormat::ply_binary,
+                   "count type of property 'vertex_indices' is not an integer type");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "element face 1\nproperty list uchar float vertex_indices\n", MeshFormat::ply_binary,
+                   "are not integers");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "element face 1\nproperty int vertex_indices\n", MeshFormat::ply_binary,
+                   "is not a list");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "element face 1\nproperty int flags\nend_header\n", MeshFormat::ply_binary,
+                   "has no vertex_indices list");
+    check_rejected("ply\nformat ascii 1.0\nbogus line\n", MeshFormat::ply_binary, "header line 3: unknown header keyword 'bogus'");
+}
+
+TEST_CASE("a lying PLY header fails fast without allocating for its counts") {
+    const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+    const auto start = std::chrono::steady_clock::now();
+    check_rejected("ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n" + xyz + "end_header\n0123456789abcdef",
+                   MeshFormat::ply_binary, "declares 4000000000 items, more than the rest of the file can hold");
+    check_rejected("ply\nformat ascii 1.0\nelement vertex 4000000000\n" + xyz + "end_header\n1 2 3\n", MeshFormat::ply_ascii,
+                   "more than the rest of the file can hold");
+    check_rejected("ply\nformat binary_little_endian 1.0\nelement vertex 0\n" + xyz +
+                       "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n\x03",
+                   MeshFormat::ply_binary, "element 'face' declares 4000000000 items");
+    check_rejected("ply\nformat binary_big_endian 1.0\nelement vertex 4294967294\nproperty double x\nproperty double y\nproperty double z\n"
+                   "end_header\n",
+                   MeshFormat::ply_binary, "more than the rest of the file can hold");
+    // An element without properties takes no bytes, however many items it claims: read past at once.
+    const MeshData mesh = read_ok("ply\nformat binary_little_endian 1.0\nelement nothing 9223372036854775807\nelement vertex 0\n" + xyz + "end_header\n",
+                                  MeshFormat::ply_binary);
+    CHECK(mesh.vertex_count() == 0);
+    CHECK(seconds_since(start) < 1.0);
+}
+
+TEST_CASE("hostile PLY bodies") {
+    const std::string ascii_head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string face_list = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+    check_rejected(ascii_head + face_list + vertices + "3 0 1 3\n", MeshFormat::ply_ascii, "PLY line 13: face 0: vertex index 3 is out of range (the file has 3 vertices)");
+    check_rejected(ascii_head + face_list + vertices + "3 0 1 -1\n", MeshFormat::ply_ascii, "vertex index -1 is out of range");
+    check_rejected(ascii_head + face_list + vertices + "2 0 1\n", MeshFormat::ply_ascii, "a face with 2 corners");
+    check_rejected(ascii_head + face_list + vertices + "-3 0 1 2\n", MeshFormat::ply_ascii, "negative list length -3");
+    check_rejected(ascii_head + face_list + vertices + "1000000 0 1 2\n", MeshFormat::ply_ascii, "list length 1000000 is more than the rest");
+    check_rejected(ascii_head + face_list + vertices + "3 0 1\n", MeshFormat::ply_ascii, "ends in the middle of the data");
+    check_rejected(ascii_head + face_list + vertices + "3 0 1 2.5\n", MeshFormat::ply_ascii, "expected an integer, found '2.5'");
+    check_rejected(ascii_head + face_list + "0 0 0\n1 zero 0\n0 1 0\n", MeshFormat::ply_ascii, "PLY line 11: expected a number, found 'zero'");
+    check_rejected(ascii_head + face_list + "0 0 0\n1 1e999 0\n0 1 0\n", MeshFormat::ply_ascii, "expected a number, found '1e999'");
+    check_rejected(ascii_head + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n" + vertices + "4 0 1 -2 2\n",
+                   MeshFormat::ply_ascii, "tristrips 0: vertex index -2 is out of range");
+
+    // A megabyte-long token is reported, shortened.
+    MeshData mesh;
+    const std::string huge = ascii_head + face_list + std::string(1 << 20, 'q') + " 0 0\n";
+    const IoStatus status = read_text(huge, MeshFormat::ply_ascii, mesh);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.size() < 200);
+
+    const std::string binary_head = "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n";
+    ByteWriter w;
+    w.text(binary_head + "element face 1\nproperty list uint int vertex_indices\nend_header\n");
+    for (int i = 0; i < 6; ++i) w.put<float>(1.0f);
+    const std::string good_vertices = w.bytes;
+    w.put<uint32_t>(0xFFFFFFFFu).put<int32_t>(0);
+    check_rejected(w.bytes, MeshFormat::ply_binary, "list length 4294967295 is more than the rest of the file can hold");
+    w.bytes = good_vertices;
+    w.put<uint32_t>(3).put<int32_t>(0).put<int32_t>(1).put<int32_t>(-7);
+    check_rejected(w.bytes, MeshFormat::ply_binary, "vertex index -7 is out of range");
+    w.bytes = good_vertices;
+    w.put<uint32_t>(3).put<int32_t>(0).put<int32_t>(1);
+    check_rejected(w.bytes, MeshFormat::ply_binary, "more than the rest of the file can hold");
+    check_rejected(good_vertices.substr(0, good_vertices.size() - 3), MeshFormat::ply_binary, "declares 2 items");
+
+    ByteWriter negative;
+    negative.text(binary_head + "element face 1\nproperty list char uint vertex_indices\nend_header\n");
+    for (int i = 0; i < 6; ++i) negative.put<float>(0.0f);
+    negative.put<int8_t>(-1);
+    check_rejected(negative.bytes, MeshFormat::ply_binary, "negative list length -1");
+
+    // Truncation that the element sizes cannot foresee (lists) is reported with its byte offset.
+    ByteWriter cut;
+    cut.text(binary_head + "element face 2\nproperty list uchar int vertex_indices\nend_header\n");
+    for (int i = 0; i < 6; ++i) cut.put<float>(0.0f);
+    cut.put<uint8_t>(3).put<int32_t>(0).put<int32_t>(1).put<int32_t>(1);
+    cut.put<uint8_t>(3);
+    check_rejected(cut.bytes, MeshFormat::ply_binary, "list length 3 is more than the rest of the file can hold");
+    cut.bytes.pop_back();
+    cut.put<uint8_t>(1).put<int32_t>(0);
+    check_rejected(cut.bytes, MeshFormat::ply_binary, "face 1: a face with 1 corners");
+    cut.bytes.resize(cut.bytes.size() - 5);
+    check_rejected(cut.bytes + "\x03", MeshFormat::ply_binary, "list length 3 is more than");
+    ByteWriter ends;
+    ends.text(binary_head + "element face 2\nproperty list uchar int vertex_indices\nproperty uchar flags\nend_header\n");
+    const size_t body = ends.bytes.size();
+    for (int i = 0; i < 6; ++i) ends.put<float>(0.0f);
+    ends.put<uint8_t>(3).put<int32_t>(0).put<int32_t>(1).put<int32_t>(1).put<uint8_t>(0);  // face 0 and its flags
+    ends.put<uint8_t>(1).put<int32_t>(0);                                                 // face 1 without its flags
+    check_rejected(ends.bytes, MeshFormat::ply_binary,
+                   "PLY byte offset " + std::to_string(body + 24 + 14 + 5) + ": the file ends in the middle of the data (1 more bytes expected, 0 left)");
+}
+
+TEST_CASE("hostile OBJ") {
+    check_rejected("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", MeshFormat::obj, "OBJ line 4: expected a vertex index");
+    check_rejected("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", MeshFormat::obj, "OBJ line 4: vertex index 4 is out of range (the file has 3 vertices)");
+    check_rejected("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", MeshFormat::obj, "relative vertex index -4 reaches before the first vertex");
+    check_rejected("v 0 0 0\nv 1 0 0\nf 1 2\n", MeshFormat::obj, "a face with 2 corners");
+    check_rejected("v 0 0 0\nf\n", MeshFormat::obj, "a face with 0 corners");
+    check_rejected("v 0 0\n", MeshFormat::obj, "needs three coordinates");
+    check_rejected("v 0 zero 0\n", MeshFormat::obj, "expected a coordinate, found 'zero'");
+    check_rejected("v 0 0 1,5\n", MeshFormat::obj, "expected a coordinate, found '1,5'");
+    check_rejected("v 0 0 0\nf 1 1/2 x/3\n", MeshFormat::obj, "found 'x/3'");
+    check_rejected("v 0 0 0\nf 1 1 /3\n", MeshFormat::obj, "found '/3'");
+    check_rejected("v 0 0 0\nf 1 1 99999999999999\n", MeshFormat::obj, "is too large");
+    check_rejected("v 0 0 0\nf 1 1 99999999999999999999999999\n", MeshFormat::obj, "expected a vertex index");
+    check_rejected("v 0 0 0\nf 1 1 -9223372036854775808\n", MeshFormat::obj, "reaches before the first vertex");
+    const MeshData nan = read_ok("v nan inf -inf\n", MeshFormat::obj);
+    CHECK(std::isnan(nan.positions[0]));
+    CHECK(std::isinf(nan.positions[1]));
+}
+
+TEST_CASE("hostile OFF") {
+    check_rejected("", MeshFormat::off, "the file is empty");
+    check_rejected("# only a comment\n", MeshFormat::off, "the file is empty");
+    check_rejected("PLY\n", MeshFormat::off, "expected the keyword 'OFF', found 'PLY'");
+    check_rejected("4OFF\n", MeshFormat::off, "expected the keyword 'OFF'");
+    check_rejected("OFF BINARY\n", MeshFormat::off, "binary OFF is not supported");
+    check_rejected("OFF\n", MeshFormat::off, "ends before the vertex and face counts");
+    check_rejected("OFF\n-1 0 0\n", MeshFormat::off, "non-negative integers");
+    check_rejected("OFF\n3\n", MeshFormat::off, "non-negative integers");
+    check_rejected("OFF\n5000000000 1 0\n0 0 0\n", MeshFormat::off, "at most 4294967294");
+    const auto start = std::chrono::steady_clock::now();
+    check_rejected("OFF\n4000000000 4000000000 0\n0 0 0\n", MeshFormat::off, "OFF line 3: the file ends after 1 of 4000000000 vertices");
+    check_rejected("OFF\n1 4000000000 0\n0 0 0\n", MeshFormat::off, "the file ends after 0 of 4000000000 faces");
+    CHECK(seconds_since(start) < 1.0);
+    const std::string three = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+    check_rejected(three + "3 0 1 3\n", MeshFormat::off, "OFF line 6: vertex index 3 is out of range (the file has 3 vertices)");
+    check_rejected(three + "3 0 1 -1\n", MeshFormat::off, "vertex index -1 is out of range");
+    check_rejected(three + "2 0 1\n", MeshFormat::off, "a face with 2 corners");
+    check_rejected(three + "5 0 1 2\n", MeshFormat::off, "declares 5 corners but lists 3");
+    check_rejected(three + "3 0 1 x\n", MeshFormat::off, "expected a vertex index, found 'x'");
+    check_rejected(three + "three 0 1 2\n", MeshFormat::off, "expected the number of corners");
+    check_rejected("OFF\n1 0 0\n0 0\n", MeshFormat::off, "needs three coordinates");
+}
+
+TEST_CASE("hostile XYZ") {
+    check_rejected("1 2 3\n4 5\n", MeshFormat::xyz, "XYZ line 2: a point needs three coordinates");
+    check_rejected("x y z\n1 2 3\n", MeshFormat::xyz, "XYZ line 1: expected a coordinate, found 'x'");
+    check_rejected("1 2 3\n5\n", MeshFormat::xyz, "XYZ line 2: a point needs three coordinates");
+    check_rejected("-5\n1 2 3\n", MeshFormat::xyz, "XYZ line 1: a point needs three coordinates");
+}
+
+TEST_CASE("hostile STL") {
+    check_rejected("short", MeshFormat::stl, "too short for a binary STL");
+    std::string lying(84, ' ');
+    lying[80] = '\x40';
+    lying[81] = '\x42';
+    lying[82] = '\x0f';
+    lying[83] = '\0';  // a million triangles in 184 bytes
+    check_rejected(lying + std::string(100, '\0'), MeshFormat::stl, "declares 1000000 triangles, but the file holds only 2");
+    check_rejected("solid x\nfacet\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 1 1 1\nendfacet\nendsolid\n", MeshFormat::stl,
+                   "STL line 6: a facet with more than three vertices");
+    check_rejected("solid x\nfacet\nvertex 0 0 0\nvertex 1 0 0\nendfacet\nendsolid\n", MeshFormat::stl, "without exactly three vertices");
+    check_rejected("solid x\nfacet\nvertex 0 0 0\n", MeshFormat::stl, "ends inside a facet");
+    check_rejected("solid x\nvertex 0 0 0\n", MeshFormat::stl, "'vertex' outside a facet");
+    check_rejected("solid x\nfacet\nvertex 0 0 zero\n", MeshFormat::stl, "needs three coordinates");
+    check_rejected("solid x\nfacet\nfacet\n", MeshFormat::stl, "'facet' inside a facet");
+}
+
+TEST_CASE("every prefix and many corruptions of valid files are handled without crashing") {
+    MeshData mesh = float_exact_mesh();
+    std::mt19937 random(12345);
+    for (MeshFormat format : ALL_FORMATS) {
+        CAPTURE(format_name(format));
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        for (size_t length = 0; length <= bytes.size(); ++length) {
+            MeshData out;
+            const IoStatus status = read_mesh_buffer(bytes.data(), length, format, out);
+            if (!status.ok) CHECK_FALSE(status.message.empty());
+            for (uint32_t index : out.triangles) CHECK(index < out.vertex_count());
+        }
+        for (int trial = 0; trial < 2000; ++trial) {
+            std::string corrupted = bytes;
+            const int edits = 1 + static_cast<int>(random() % 4);
+            for (int e = 0; e < edits; ++e) {
+                const size_t at = random() % corrupted.size();
+                const char choices[] = {'\0', '\xff', '-', '9', ' ', '\n', '/', '#', 'e', '.'};
+                corrupted[at] = random() % 2 ? static_cast<char>(random()) : choices[random() % sizeof choices];
+            }
+            MeshData out;
+            const IoStatus status = read_mesh_buffer(corrupted.data(), corrupted.size(), format, out);
+            if (!status.ok) CHECK_FALSE(status.message.empty());
+            for (uint32_t index : out.triangles) CHECK(index < out.vertex_count());
+        }
+    }
+}
+
+TEST_CASE("random bytes are rejected or read without crashing by every reader") {
+    std::mt19937 random(777);
+    for (int trial = 0; trial < 300; ++trial) {
+        std::string garbage(random() % 400, '\0');
+        for (char& c : garbage) c = static_cast<char>(random());
+        // Give the header-driven readers a chance to get past their first line.
+        if (trial % 3 == 0) garbage = "ply\nformat binary_little_endian 1.0\n" + garbage;
+        if (trial % 3 == 1) garbage = "OFF\n" + garbage;
+        for (MeshFormat format : ALL_FORMATS) {
+            MeshData out;
+            const IoStatus status = read_mesh_buffer(garbage.data(), garbage.size(), format, out);
+            if (!status.ok) CHECK_FALSE(status.message.empty());
+            for (uint32_t index : out.triangles) CHECK(index < out.vertex_count());
+        }
+    }
+}
+
+TEST_CASE("reading a one-million-point binary PLY takes well under a second") {
+    for (bool as_float : {true, false}) {
+        MeshData cloud;
+        cloud.positions.resize(3 * 1000000);
+        std::mt19937 random(99);
+        std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+        for (double& value : cloud.positions) value = as_float ? static_cast<float>(uniform(random)) : uniform(random);
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(cloud, MeshFormat::ply_binary, bytes).ok);
+        const auto start = std::chrono::steady_clock::now();
+        MeshData back;
+        REQUIRE(read_mesh_buffer(bytes.data(), bytes.size(), MeshFormat::ply_binary, back).ok);
+        const double seconds = seconds_since(start);
+        MESSAGE("1M-point binary PLY (" << (as_float ? "float32" : "float64") << ", " << bytes.size() / 1000000 << " MB) read in "
+                                        << seconds << " s");
+        CHECK(same_bits(back.positions, cloud.positions));
+        if (!SANITIZED) CHECK(seconds < 0.5);
+    }
+}

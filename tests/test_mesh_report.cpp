@@ -1,0 +1,604 @@
+// Tests of the mesh report: known answers on small meshes, face recall, points used, JSON, speed, and
+// every mesh of ../shared/data checked against a naive std::map computation.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <dirent.h>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "io/mesh_io.h"
+#include "io/mesh_report.h"
+
+using namespace dbrg::io;
+
+namespace {
+
+const double PI = 3.14159265358979323846;
+
+MeshReport report_of(const MeshData& mesh) {
+    MeshReport report;
+    const IoStatus status = make_mesh_report(mesh, report);
+    INFO(status.message);
+    REQUIRE(status.ok);
+    return report;
+}
+
+MeshData make_mesh(std::vector<double> positions, std::vector<uint32_t> triangles) {
+    MeshData mesh;
+    mesh.positions = std::move(positions);
+    mesh.triangles = std::move(triangles);
+    mesh.has_faces = true;
+    return mesh;
+}
+
+void add_quad(MeshData& mesh, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+    mesh.triangles.insert(mesh.triangles.end(), {a, b, c, a, c, d});
+}
+
+MeshData tetrahedron() { return make_mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 2, 1, 0, 1, 3, 1, 2, 3, 2, 0, 3}); }
+
+// Vertex x + 2y + 4z at (x, y, z); every face counter-clockwise seen from outside.
+MeshData cube() {
+    MeshData mesh = make_mesh({}, {});
+    for (int v = 0; v < 8; ++v) mesh.positions.insert(mesh.positions.end(), {double(v & 1), double((v >> 1) & 1), double(v >> 2)});
+    add_quad(mesh, 0, 2, 3, 1);
+    add_quad(mesh, 4, 5, 7, 6);
+    add_quad(mesh, 0, 1, 5, 4);
+    add_quad(mesh, 2, 6, 7, 3);
+    add_quad(mesh, 0, 4, 6, 2);
+    add_quad(mesh, 1, 3, 7, 5);
+    return mesh;
+}
+
+// An n x m grid of quads on a torus, two triangles each.
+MeshData torus(uint32_t n, uint32_t m) {
+    MeshData mesh = make_mesh({}, {});
+    for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t j = 0; j < m; ++j) {
+            const double u = 2 * PI * i / n, v = 2 * PI * j / m;
+            mesh.positions.insert(mesh.positions.end(), {(3 + std::cos(v)) * std::cos(u), (3 + std::cos(v)) * std::sin(u), std::sin(v)});
+        }
+    }
+    auto at = [&](uint32_t i, uint32_t j) { return (i % n) * m + (j % m); };
+    for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t j = 0; j < m; ++j) add_quad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+    return mesh;
+}
+
+// A band of n quads whose ends are glued with a half twist.
+MeshData moebius_strip(uint32_t n) {
+    MeshData mesh = make_mesh({}, {});
+    for (uint32_t i = 0; i < n; ++i) {
+        const double u = 2 * PI * i / n;
+        for (double v : {-0.5, 0.5}) {
+            mesh.positions.insert(mesh.positions.end(),
+                                  {(1 + v * std::cos(u / 2)) * std::cos(u), (1 + v * std::cos(u / 2)) * std::sin(u), v * std::sin(u / 2)});
+        }
+    }
+    for (uint32_t i = 0; i + 1 < n; ++i) add_quad(mesh, 2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1);
+    add_quad(mesh, 2 * (n - 1), 1, 0, 2 * (n - 1) + 1);  // the twist: top meets bottom
+    return mesh;
+}
+
+// An open square grid of n x n quads.
+MeshData grid(uint32_t n) {
+    MeshData mesh = make_mesh({}, {});
+    for (uint32_t i = 0; i <= n; ++i) {
+        for (uint32_t j = 0; j <= n; ++j) mesh.positions.insert(mesh.positions.end(), {double(i), double(j), 0.0});
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t j = 0; j < n; ++j) add_quad(mesh, i * (n + 1) + j, (i + 1) * (n + 1) + j, (i + 1) * (n + 1) + j + 1, i * (n + 1) + j + 1);
+    }
+    return mesh;
+}
+
+MeshData translated_copy_appended(const MeshData& mesh, double dx) {
+    MeshData both = mesh;
+    const uint32_t offset = static_cast<uint32_t>(mesh.vertex_count());
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        both.positions.insert(both.positions.end(), {mesh.positions[3 * v] + dx, mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]});
+    }
+    for (uint32_t index : mesh.triangles) both.triangles.push_back(index + offset);
+    return both;
+}
+
+} // namespace
+
+TEST_CASE("tetrahedron: closed, oriented, genus 0") {
+    const MeshReport r = report_of(tetrahedron());
+    CHECK(r.faces == 4);
+    CHECK(r.vertices == 4);
+    CHECK(r.edges_manifold == 6);
+    CHECK(r.edges_boundary == 0);
+    CHECK(r.edges_nonmanifold == 0);
+    CHECK(r.vertices_nonmanifold == 0);
+    CHECK(r.boundary_loops == 0);
+    CHECK(r.components == 1);
+    CHECK(r.oriented);
+    CHECK(r.euler_characteristic == 2);
+    REQUIRE(r.genus);
+    CHECK(*r.genus == 0);
+    CHECK(r.degenerate_faces == 0);
+    CHECK(r.duplicate_faces == 0);
+}
+
+TEST_CASE("cube of 12 triangles") {
+    const MeshReport r = report_of(cube());
+    CHECK(r.faces == 12);
+    CHECK(r.vertices == 8);
+    CHECK(r.edges_manifold == 18);
+    CHECK(r.edges_boundary == 0);
+    CHECK(r.euler_characteristic == 2);
+    CHECK(r.oriented);
+    REQUIRE(r.genus);
+    CHECK(*r.genus == 0);
+}
+
+TEST_CASE("torus grid: genus 1") {
+    const MeshReport r = report_of(torus(12, 8));
+    CHECK(r.faces == 192);
+    CHECK(r.vertices == 96);
+    CHECK(r.edges_manifold == 288);
+    CHECK(r.euler_characteristic == 0);
+    CHECK(r.oriented);
+    REQUIRE(r.genus);
+    CHECK(*r.genus == 1);
+}
+
+TEST_CASE("two disjoint closed components: genus adds up") {
+    const MeshReport r = report_of(translated_copy_appended(torus(6, 5), 20.0));
+    CHECK(r.components == 2);
+    CHECK(r.euler_characteristic == 0);
+    REQUIRE(r.genus);
+    CHECK(*r.genus == 2);
+    const MeshReport tets = report_of(translated_copy_appended(tetrahedron(), 5.0));
+    CHECK(tets.components == 2);
+    CHECK(tets.euler_characteristic == 4);
+    REQUIRE(tets.genus);
+    CHECK(*tets.genus == 0);
+}
+
+TEST_CASE("Moebius strip: manifold with one boundary loop, not orientable") {
+    const uint32_t n = 10;
+    const MeshReport r = report_of(moebius_strip(n));
+    CHECK(r.faces == 2 * n);
+    CHECK(r.vertices == 2 * n);
+    CHECK(r.edges_boundary == 2 * n);
+    CHECK(r.edges_manifold == 2 * n);
+    CHECK(r.edges_nonmanifold == 0);
+    CHECK(r.vertices_nonmanifold == 0);
+    CHECK(r.boundary_loops == 1);
+    CHECK(r.components == 1);
+    CHECK_FALSE(r.oriented);
+    CHECK(r.euler_characteristic == 0);
+    CHECK_FALSE(r.genus);
+}
+
+TEST_CASE("a flipped face breaks the orientation of a closed mesh") {
+    MeshData mesh = tetrahedron();
+    std::swap(mesh.triangles[0], mesh.triangles[1]);
+    const MeshReport r = report_of(mesh);
+    CHECK_FALSE(r.oriented);
+    CHECK(r.edges_boundary == 0);
+    CHECK_FALSE(r.genus);
+}
+
+TEST_CASE("bow-tie: two triangles sharing one vertex") {
+    const MeshReport r = report_of(make_mesh({0, 0, 0, 1, 0, 0, 1, 1, 0, -1, 0, 0, -1, -1, 0}, {0, 1, 2, 0, 3, 4}));
+    CHECK(r.faces == 2);
+    CHECK(r.vertices == 5);
+    CHECK(r.edges_boundary == 6);
+    CHECK(r.vertices_nonmanifold == 1);
+    CHECK(r.boundary_loops == 2);
+    CHECK(r.components == 2);
+    CHECK(r.oriented);
+    CHECK(r.euler_characteristic == 1);
+    CHECK_FALSE(r.genus);
+}
+
+TEST_CASE("a closed surface pinched at a vertex is non-manifold there") {
+    // Two tetrahedra sharing vertex 0.
+    MeshData mesh = tetrahedron();
+    mesh.positions.insert(mesh.positions.end(), {-1, 0, 0, 0, -1, 0, 0, 0, -1});
+    mesh.triangles.insert(mesh.triangles.end(), {0, 4, 5, 0, 6, 4, 4, 6, 5, 0, 5, 6});
+    const MeshReport r = report_of(mesh);
+    CHECK(r.edges_boundary == 0);
+    CHECK(r.edges_nonmanifold == 0);
+    CHECK(r.vertices_nonmanifold == 1);
+    CHECK(r.components == 2);
+    CHECK(r.euler_characteristic == 3);
+    CHECK_FALSE(r.genus);
+}
+
+TEST_CASE("a cube with a hole: one boundary loop, a disk") {
+    MeshData mesh = cube();
+    mesh.triangles.erase(mesh.triangles.begin() + 6, mesh.triangles.begin() + 12);  // the top face
+    const MeshReport r = report_of(mesh);
+    CHECK(r.faces == 10);
+    CHECK(r.edges_boundary == 4);
+    CHECK(r.edges_manifold == 13);
+    CHECK(r.boundary_loops == 1);
+    CHECK(r.euler_characteristic == 1);
+    CHECK(r.oriented);
+    CHECK(r.vertices_nonmanifold == 0);
+    CHECK_FALSE(r.genus);
+}
+
+TEST_CASE("an open grid and a torus with two holes") {
+    const MeshReport g = report_of(grid(5));
+    CHECK(g.boundary_loops == 1);
+    CHECK(g.edges_boundary == 20);
+    CHECK(g.euler_characteristic == 1);
+    MeshData holed = torus(12, 8);
+    holed.triangles.erase(holed.triangles.begin() + 3 * 40, holed.triangles.begin() + 3 * 42);
+    holed.triangles.erase(holed.triangles.begin(), holed.triangles.begin() + 6);
+    const MeshReport t = report_of(holed);
+    CHECK(t.boundary_loops == 2);
+    CHECK(t.edges_boundary == 8);
+    CHECK(t.euler_characteristic == -2);
+    CHECK(t.vertices_nonmanifold == 0);
+}
+
+TEST_CASE("an edge with three faces") {
+    const MeshReport r = report_of(make_mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1}, {0, 1, 2, 1, 0, 3, 0, 1, 4}));
+    CHECK(r.edges_nonmanifold == 1);
+    CHECK(r.edges_boundary == 6);
+    CHECK(r.edges_manifold == 0);
+    CHECK(r.vertices_nonmanifold == 2);
+    CHECK(r.components == 1);
+    CHECK_FALSE(r.genus);
+}
+
+TEST_CASE("duplicate and degenerate faces") {
+    MeshData mesh = tetrahedron();
+    mesh.positions.insert(mesh.positions.end(), {0.5, 0, 0});  // vertex 4, on edge 0-1
+    mesh.triangles.insert(mesh.triangles.end(), {
+        1, 0, 2,  // face 0 again, other order and orientation: duplicate
+        0, 1, 4,  // three distinct collinear corners: zero area
+        2, 2, 3,  // a repeated index: degenerate and no part of the topology
+        3, 2, 2,  // the same again: also a duplicate
+    });
+    const MeshReport r = report_of(mesh);
+    CHECK(r.faces == 8);
+    CHECK(r.duplicate_faces == 2);
+    CHECK(r.degenerate_faces == 3);
+    CHECK(r.vertices == 5);
+    CHECK(r.edges_nonmanifold == 3);  // the edges of face 0 now have three faces
+}
+
+TEST_CASE("a two-faced pillow is closed and of genus 0") {
+    const MeshReport r = report_of(make_mesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 1}));
+    CHECK(r.duplicate_faces == 1);
+    CHECK(r.edges_manifold == 3);
+    CHECK(r.oriented);
+    REQUIRE(r.genus);
+    CHECK(*r.genus == 0);
+}
+
+TEST_CASE("empty meshes and isolated vertices") {
+    const MeshReport empty = report_of(MeshData());
+    CHECK(empty.faces == 0);
+    CHECK(empty.vertices == 0);
+    CHECK(empty.components == 0);
+    CHECK(empty.oriented);
+    CHECK_FALSE(empty.genus);
+    MeshData mesh = tetrahedron();
+    mesh.positions.insert(mesh.positions.end(), {9, 9, 9, 8, 8, 8});
+    const MeshReport r = report_of(mesh);
+    CHECK(r.vertices == 4);
+    CHECK(r.vertices_isolated == 2);
+    CHECK(r.euler_characteristic == 2);
+}
+
+TEST_CASE("vertices are told apart by index, not position") {
+    // The cube's faces over unshared corners: 36 vertices, every edge a boundary.
+    const MeshData shared = cube();
+    MeshData split = make_mesh({}, {});
+    for (uint32_t index : shared.triangles) {
+        split.triangles.push_back(static_cast<uint32_t>(split.vertex_count()));
+        split.positions.insert(split.positions.end(), shared.positions.begin() + 3 * index, shared.positions.begin() + 3 * index + 3);
+    }
+    const MeshReport r = report_of(split);
+    CHECK(r.vertices == 36);
+    CHECK(r.components == 12);
+    CHECK(r.edges_boundary == 36);
+    CHECK(r.boundary_loops == 12);
+}
+
+TEST_CASE("malformed arrays are reported, not read past") {
+    MeshReport report;
+    MeshData mesh = tetrahedron();
+    mesh.triangles.push_back(4);
+    mesh.triangles.push_back(0);
+    mesh.triangles.push_back(1);
+    IoStatus status = make_mesh_report(mesh, report);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message.find("triangle 4 refers to vertex 4") != std::string::npos);
+    mesh.triangles.pop_back();
+    CHECK_FALSE(make_mesh_report(mesh, report).ok);
+    CHECK_FALSE(add_face_recall(tetrahedron(), mesh, report).ok);
+    CHECK_FALSE(add_points_used(mesh, tetrahedron(), report).ok);
+}
+
+TEST_CASE("face recall matches corner positions exactly, in any order and numbering") {
+    const MeshData reference = torus(10, 6);
+    MeshReport report = report_of(reference);
+    REQUIRE(add_face_recall(reference, reference, report).ok);
+    REQUIRE(report.face_recall);
+    CHECK(*report.face_recall == 1.0);
+    CHECK(*report.reference_faces == 120);
+
+    // Renumbered vertices, reversed faces, and only half of the triangles.
+    MeshData other = reference;
+    const uint32_t n = static_cast<uint32_t>(reference.vertex_count());
+    for (uint32_t v = 0; v < n; ++v) {
+        for (int k = 0; k < 3; ++k) other.positions[3 * (n - 1 - v) + k] = reference.positions[3 * v + k];
+    }
+    other.triangles.clear();
+    for (size_t t = 0; t < reference.triangle_count(); t += 2) {
+        for (int k = 2; k >= 0; --k) other.triangles.push_back(n - 1 - reference.triangles[3 * t + k]);
+    }
+    REQUIRE(add_face_recall(other, reference, report).ok);
+    CHECK(*report.face_recall == doctest::Approx(0.5));
+
+    // Moving one vertex by the smallest step loses its six triangles.
+    other = reference;
+    other.positions[0] = std::nextafter(other.positions[0], 10.0);
+    REQUIRE(add_face_recall(other, reference, report).ok);
+    CHECK(*report.face_recall == doctest::Approx(114.0 / 120.0));
+
+    REQUIRE(add_face_recall(reference, MeshData(), report).ok);
+    CHECK(*report.reference_faces == 0);
+    CHECK_FALSE(report.face_recall);
+}
+
+TEST_CASE("points used counts input points sitting at vertices of faces") {
+    const MeshData mesh = tetrahedron();
+    MeshData points;
+    points.positions = {0, 0, 0, 1, 0, 0, -0.0, 1, 0, 5, 5, 5, 0, 0, 0};  // -0 equals 0; a duplicate counts twice
+    MeshReport report = report_of(mesh);
+    REQUIRE(add_points_used(mesh, points, report).ok);
+    CHECK(*report.points_input == 5);
+    CHECK(*report.points_used == 4);
+}
+
+TEST_CASE("JSON has every key, genus null when unknown") {
+    MeshReport report = report_of(grid(2));
+    std::string json = to_json(report);
+    for (const char* key : {"faces", "vertices", "edges_manifold", "edges_boundary", "edges_nonmanifold", "vertices_nonmanifold",
+                            "boundary_loops", "components", "oriented", "euler_characteristic", "genus", "degenerate_faces",
+                            "duplicate_faces"}) {
+        CAPTURE(key);
+        CHECK(json.find("\"" + std::string(key) + "\": ") != std::string::npos);
+    }
+    CHECK(json.find("\"genus\": null") != std::string::npos);
+    CHECK(json.find("\"faces\": 8,") != std::string::npos);
+    CHECK(json.find("face_recall") == std::string::npos);
+    CHECK(json.front() == '{');
+    CHECK(json.substr(json.size() - 2) == "}\n");
+
+    REQUIRE(add_face_recall(grid(2), grid(2), report).ok);
+    REQUIRE(add_points_used(grid(2), grid(2), report).ok);
+    json = to_json(report_of(tetrahedron()));
+    CHECK(json.find("\"genus\": 0,") != std::string::npos);
+    CHECK(json.find("\"oriented\": true,") != std::string::npos);
+    json = to_json(report);
+    CHECK(json.find("\"face_recall\": 1,") != std::string::npos);
+    CHECK(json.find("\"points_input\": 9,") != std::string::npos);
+    CHECK(json.find("\"points_used\": 9\n") != std::string::npos);
+}
+
+TEST_CASE("a two-million-face mesh is reported in about a second") {
+    const MeshData mesh = torus(1000, 1000);
+    const auto start = std::chrono::steady_clock::now();
+    const MeshReport r = report_of(mesh);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    MESSAGE("report on " << r.faces << " faces in " << seconds << " s");
+    CHECK(r.faces == 2000000);
+    REQUIRE(r.genus);
+    CHECK(*r.genus == 1);
+}
+
+// ------------------------------------------------------------------------------------------------
+// The shared reference meshes, against a deliberately naive computation with ordered maps.
+
+namespace {
+
+struct NaiveFigures {
+    uint64_t vertices = 0, edges_manifold = 0, edges_boundary = 0, edges_nonmanifold = 0, vertices_nonmanifold = 0;
+    uint64_t boundary_loops = 0, components = 0, degenerate = 0, duplicates = 0;
+    bool oriented = true;
+    int64_t euler = 0;
+};
+
+// Connected components of a graph given as adjacency lists over arbitrary keys, by depth-first search;
+// `label` receives the component number of each node.
+template <class Node>
+uint64_t count_components(const std::map<Node, std::vector<Node>>& adjacency, std::map<Node, uint64_t>& label) {
+    uint64_t count = 0;
+    for (const auto& entry : adjacency) {
+        if (label.count(entry.first)) continue;
+        std::vector<Node> stack = {entry.first};
+        label[entry.first] = count;
+        while (!stack.empty()) {
+            const Node node = stack.back();
+            stack.pop_back();
+            for (const Node& next : adjacency.at(node)) {
+                if (label.emplace(next, count).second) stack.push_back(next);
+            }
+        }
+        ++count;
+    }
+    return count;
+}
+
+NaiveFigures naive_figures(const MeshData& mesh) {
+    NaiveFigures n;
+    using Edge = std::pair<uint32_t, uint32_t>;
+    std::map<Edge, std::vector<std::pair<size_t, bool>>> edge_faces;  // faces and whether they run low to high
+    std::set<std::vector<uint32_t>> seen;
+    std::set<uint32_t> used;
+    uint64_t proper = 0;
+    auto edge_of = [](uint32_t a, uint32_t b) { return Edge(std::min(a, b), std::max(a, b)); };
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const uint32_t* c = &mesh.triangles[3 * t];
+        std::vector<uint32_t> sorted(c, c + 3);
+        std::sort(sorted.begin(), sorted.end());
+        if (!seen.insert(sorted).second) ++n.duplicates;
+        const bool repeated = sorted[0] == sorted[1] || sorted[1] == sorted[2];
+        const double* p[3] = {&mesh.positions[3 * c[0]], &mesh.positions[3 * c[1]], &mesh.positions[3 * c[2]]};
+        double u[3], v[3];
+        for (int k = 0; k < 3; ++k) {
+            u[k] = p[1][k] - p[0][k];
+            v[k] = p[2][k] - p[0][k];
+        }
+        const bool flat = u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 && u[0] * v[1] - u[1] * v[0] == 0;
+        if (repeated || flat) ++n.degenerate;
+        if (repeated) continue;
+        ++proper;
+        for (int k = 0; k < 3; ++k) {
+            used.insert(c[k]);
+            edge_faces[edge_of(c[k], c[(k + 1) % 3])].push_back({t, c[k] < c[(k + 1) % 3]});
+        }
+    }
+    n.vertices = used.size();
+    std::map<size_t, std::vector<size_t>> face_graph;
+    std::set<uint32_t> bad_vertices;
+    for (const auto& [edge, faces] : edge_faces) {
+        if (faces.size() == 1) ++n.edges_boundary;
+        if (faces.size() == 2) ++n.edges_manifold;
+        if (faces.size() == 2 && faces[0].second == faces[1].second) n.oriented = false;
+        if (faces.size() > 2) {
+            ++n.edges_nonmanifold;
+            bad_vertices.insert(edge.first);
+            bad_vertices.insert(edge.second);
+        }
+        for (const auto& face : faces) {
+            face_graph[face.first];
+            for (const auto& other : faces) face_graph[face.first].push_back(other.first);
+        }
+    }
+    std::map<size_t, uint64_t> face_label;
+    n.components = count_components(face_graph, face_label);
+
+    // Fans: per vertex, its faces joined through manifold edges at that vertex.
+    std::map<uint32_t, std::vector<size_t>> faces_at;
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const uint32_t* c = &mesh.triangles[3 * t];
+        if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+        for (int k = 0; k < 3; ++k) faces_at[c[k]].push_back(t);
+    }
+    using FanNode = std::pair<uint32_t, size_t>;  // (vertex, face)
+    std::map<FanNode, std::vector<FanNode>> fan_graph;
+    for (const auto& [vertex, faces] : faces_at) {
+        for (size_t f : faces) fan_graph[{vertex, f}];
+    }
+    for (const auto& [edge, faces] : edge_faces) {
+        if (faces.size() != 2) continue;
+        for (uint32_t vertex : {edge.first, edge.second}) {
+            fan_graph[{vertex, faces[0].first}].push_back({vertex, faces[1].first});
+            fan_graph[{vertex, faces[1].first}].push_back({vertex, faces[0].first});
+        }
+    }
+    std::map<FanNode, uint64_t> fan_label;
+    count_components(fan_graph, fan_label);
+    std::map<uint32_t, std::set<uint64_t>> fans_at;
+    for (const auto& [node, label] : fan_label) fans_at[node.first].insert(label);
+    for (const auto& [vertex, fans] : fans_at) {
+        if (fans.size() > 1) bad_vertices.insert(vertex);
+    }
+    n.vertices_nonmanifold = bad_vertices.size();
+
+    // Boundary loops: boundary edges chained through the fans at their ends.
+    std::map<uint64_t, std::vector<uint64_t>> loop_graph;
+    for (const auto& [edge, faces] : edge_faces) {
+        if (faces.size() != 1) continue;
+        const uint64_t a = fan_label.at({edge.first, faces[0].first}), b = fan_label.at({edge.second, faces[0].first});
+        loop_graph[a].push_back(b);
+        loop_graph[b].push_back(a);
+    }
+    std::map<uint64_t, uint64_t> loop_label;
+    n.boundary_loops = count_components(loop_graph, loop_label);
+    n.euler = int64_t(n.vertices) - int64_t(edge_faces.size()) + int64_t(proper);
+    return n;
+}
+
+std::string shared_data_dir() {
+    if (const char* dir = std::getenv("DBRG_DATA_DIR")) return dir;
+#ifdef DBRG_SHARED_DATA_DIR
+    return DBRG_SHARED_DATA_DIR;
+#else
+    return "";
+#endif
+}
+
+} // namespace
+
+TEST_CASE("the naive computation agrees on the hand-made meshes") {
+    for (const MeshData& mesh : {tetrahedron(), cube(), torus(7, 5), moebius_strip(9), grid(3)}) {
+        const MeshReport r = report_of(mesh);
+        const NaiveFigures n = naive_figures(mesh);
+        CHECK(n.vertices == r.vertices);
+        CHECK(n.edges_boundary == r.edges_boundary);
+        CHECK(n.boundary_loops == r.boundary_loops);
+        CHECK(n.oriented == r.oriented);
+        CHECK(n.euler == r.euler_characteristic);
+    }
+}
+
+TEST_CASE("every mesh in ../shared/data matches the naive computation") {
+    const std::string dir = shared_data_dir();
+    DIR* listing = dir.empty() ? nullptr : opendir(dir.c_str());
+    if (!listing) {
+        MESSAGE("skipped: no shared data folder at '" << dir << "' (set DBRG_DATA_DIR to point at one)");
+        return;
+    }
+    std::vector<std::string> names;
+    while (const dirent* entry = readdir(listing)) {
+        if (format_from_path(entry->d_name)) names.push_back(entry->d_name);
+    }
+    closedir(listing);
+    std::sort(names.begin(), names.end());
+    CHECK_FALSE(names.empty());
+    for (const std::string& name : names) {
+        CAPTURE(name);
+        MeshData mesh;
+        const IoStatus status = read_mesh(dir + "/" + name, mesh);
+        INFO(status.message);
+        REQUIRE(status.ok);
+        const MeshReport r = report_of(mesh);
+        const NaiveFigures n = naive_figures(mesh);
+        std::string figures = to_json(r);
+        figures.erase(std::remove(figures.begin(), figures.end(), '\n'), figures.end());
+        figures.erase(std::unique(figures.begin(), figures.end(), [](char a, char b) { return a == ' ' && b == ' '; }), figures.end());
+        MESSAGE(name << ": " << figures);
+        CHECK(r.faces == mesh.triangle_count());
+        CHECK(r.vertices == n.vertices);
+        CHECK(r.vertices + r.vertices_isolated == mesh.vertex_count());
+        CHECK(r.edges_manifold == n.edges_manifold);
+        CHECK(r.edges_boundary == n.edges_boundary);
+        CHECK(r.edges_nonmanifold == n.edges_nonmanifold);
+        CHECK(r.vertices_nonmanifold == n.vertices_nonmanifold);
+        CHECK(r.boundary_loops == n.boundary_loops);
+        CHECK(r.components == n.components);
+        CHECK(r.oriented == n.oriented);
+        CHECK(r.euler_characteristic == n.euler);
+        CHECK(r.degenerate_faces == n.degenerate);
+        CHECK(r.duplicate_faces == n.duplicates);
+        const bool closed = n.edges_boundary == 0 && n.edges_nonmanifold == 0 && n.vertices_nonmanifold == 0 && n.oriented;
+        CHECK(bool(r.genus) == closed);
+        if (r.genus) CHECK(*r.genus == (2 * int64_t(n.components) - n.euler) / 2);
+        // Facts stated by the data's README.
+        if (name == "rocker-arm.off") CHECK(r.genus == std::optional<int64_t>(1));
+        if (name == "spot.obj") CHECK(r.genus == std::optional<int64_t>(0));
+        if (name == "stanford-bunny.obj") CHECK(mesh.vertex_count() == 35947);
+        if (name == "cow.ply") CHECK(mesh.vertex_count() == 2903);
+    }
+}
