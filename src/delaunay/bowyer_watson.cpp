@@ -46,14 +46,14 @@ struct NewTet {
 };
 
 struct EdgeEntry {
-    uint32_t a, b;   // the edge, a < b (the infinite vertex is the largest id)
-    uint32_t link;   // the new tetrahedron and its local face waiting for a partner
-    uint32_t stamp;  // the insertion the entry belongs to; older entries count as empty
+    uint64_t edge;  // a << 32 | b with a < b (the infinite vertex is the largest id); EMPTY_EDGE if unused
+    uint32_t link;  // the new tetrahedron and its local face waiting for a partner
 };
+constexpr uint64_t EMPTY_EDGE = UINT64_MAX;
 
-uint32_t hash_edge(uint32_t a, uint32_t b) {
-    uint32_t h = a * 0x9e3779b1u ^ (b + 0x7f4a7c15u) * 0x85ebca6bu;
-    return h ^ (h >> 16);
+uint32_t hash_edge(uint64_t edge) {
+    const uint64_t h = edge * 0x9e3779b97f4a7c15ull;
+    return static_cast<uint32_t>(h >> 40);
 }
 
 } // namespace
@@ -62,7 +62,8 @@ class DelaunayBuilder {
 public:
     DelaunayBuilder(Tetrahedralization& out, Context& context)
         : out_(out), context_(context), memory_(context.memory), cavity_(memory_), outside_(memory_),
-          boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_) {}
+          boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
+          used_edges_(memory_) {}
 
     dbrg_status run(Array<uint32_t>& order);
 
@@ -95,7 +96,6 @@ private:
     uint32_t free_head_ = NO_TET;    // free slots, chained through adjacency entry 0
     uint32_t hint_ = 0;              // a tetrahedron made by the last insertion: the next walk starts there
     uint64_t random_ = WALK_SEED;
-    uint32_t stamp_ = 0;
 
     // Scratch space of one insertion.
     Array<uint32_t> cavity_;
@@ -104,6 +104,7 @@ private:
     Array<NewTet> new_tets_;
     Array<uint32_t> new_slots_;
     Array<EdgeEntry> edges_;
+    Array<uint32_t> used_edges_;  // the entries of edges_ one insertion filled
 };
 
 dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
@@ -346,17 +347,14 @@ dbrg_status DelaunayBuilder::link_new_tets() {
     size_t capacity = 64;
     while (capacity < 4 * face_count) capacity *= 2;
     if (edges_.size() < capacity) {
-        if (!edges_.resize(capacity, EdgeEntry{0, 0, 0, 0})) return context_.fail_out_of_memory();
-        for (EdgeEntry& e : edges_) e.stamp = 0;
-        stamp_ = 0;
+        if (!edges_.resize(capacity) || !used_edges_.reserve(2 * face_count)) return context_.fail_out_of_memory();
+        for (EdgeEntry& e : edges_) e.edge = EMPTY_EDGE;
     }
-    if (++stamp_ == 0) {
-        for (EdgeEntry& e : edges_) e.stamp = 0;
-        stamp_ = 1;
-    }
+    if (!used_edges_.reserve(2 * face_count)) return context_.fail_out_of_memory();
     const uint32_t mask = static_cast<uint32_t>(edges_.size() - 1);
     EdgeEntry* table = edges_.data();
-    // For the new point at local index lf and the face g, the two local vertices other than lf and g.
+    uint32_t* used = used_edges_.data();
+    size_t used_count = 0;
     static const uint8_t OTHER[4][4][2] = {
         {{0, 0}, {2, 3}, {1, 3}, {1, 2}},
         {{2, 3}, {0, 0}, {0, 3}, {0, 2}},
@@ -375,17 +373,22 @@ dbrg_status DelaunayBuilder::link_new_tets() {
                 a = b;
                 b = t;
             }
-            uint32_t k = hash_edge(a, b) & mask;
-            while (table[k].stamp == stamp_ && (table[k].a != a || table[k].b != b)) k = (k + 1) & mask;
+            const uint64_t edge = uint64_t(a) << 32 | b;
+            uint32_t k = hash_edge(edge) & mask;
+            while (table[k].edge != edge && table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
             EdgeEntry& e = table[k];
-            if (e.stamp == stamp_) {
+            if (e.edge == edge) {
                 adjacency_[4 * size_t(s) + g] = e.link;
                 adjacency_[4 * size_t(e.link >> 2) + (e.link & 3)] = s << 2 | g;
             } else {
-                e = EdgeEntry{a, b, s << 2 | g, stamp_};
+                e.edge = edge;
+                e.link = s << 2 | g;
+                used[used_count++] = k;
             }
         }
     }
+    // Every boundary edge was found twice; empty the table for the next point.
+    for (size_t i = 0; i < used_count; ++i) table[used[i]].edge = EMPTY_EDGE;
     return DBRG_OK;
 }
 
