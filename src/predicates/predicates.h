@@ -5,17 +5,21 @@
 // Predicates" (1997) for the expansion arithmetic; H. Edelsbrunner and E. P. Mücke, "Simulation of
 // Simplicity" (1990) for the perturbation of the lifted coordinate, ordered by point coordinates.
 //
-// Points are `const double*` to three coordinates. Inputs are expected to be conditioned (finite,
-// scaled near unit size by a power of two) so that no intermediate product overflows or underflows.
+// Points are `const double*` to three coordinates, expected conditioned as point_conditioning does it:
+// finite, |coordinate| <= 1, and each coordinate zero or a multiple of 2^-200 (every double of magnitude
+// at least 2^-147 is). Then no exact intermediate product overflows or underflows; the filters are sound
+// for any finite input of moderate size, but the exact fallback is only guaranteed under this condition.
+// The fast paths are out of line: inlining them into callers measured no faster.
 #pragma once
 
 #include <stdint.h>
 
 namespace dbrg {
 
-// How often each path was taken; one instance per computation (no global state).
+// How often each path was taken; one instance per computation (no global state). Each public call counts
+// once; the orient3d/orient2d evaluations a perturbation runs internally are not counted separately.
 struct PredicateCounters {
-    uint64_t calls = 0;            // every orient3d / insphere / incircle evaluation
+    uint64_t calls = 0;            // every orient3d / insphere_exact / insphere_sos / incircle3d_sos call
     uint64_t filter_failures = 0;  // the floating-point filter could not decide; exact arithmetic ran
     uint64_t perturbations = 0;    // the exact value was zero; symbolic perturbation decided
 };
@@ -25,24 +29,28 @@ struct PredicateCounters {
 // Equal to the sign of det[a-d; b-d; c-d] (Shewchuk's convention). Exact.
 int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters);
 
-// Exact sign of insphere(a, b, c, d, e): +1 when e lies inside the sphere through a, b, c, d and
-// orient3d(a, b, c, d) > 0 (the sign flips when the tetrahedron is negatively oriented); 0 when the
-// five points are cospherical (or the four are coplanar).
+// Exact sign of insphere(a, b, c, d, e), the determinant with rows (p - e, |p - e|^2) for p = a, b, c, d:
+// +1 when e lies inside the sphere through a, b, c, d and orient3d(a, b, c, d) > 0 (the sign flips when
+// the tetrahedron is negatively oriented); 0 when the five points are cospherical. When a, b, c, d are
+// coplanar it is still the exact sign of that determinant, which then does not tell inside from outside.
 int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
                    PredicateCounters& counters);
 
 // As insphere_exact, but never 0 when orient3d(a, b, c, d) != 0: cospherical configurations are
-// resolved by perturbing each point's lifted coordinate |p|^2 by eps^k, with k the rank of p in
-// lexicographic (x, y, z) order among all points, so that the result depends only on coordinates,
-// never on argument order or on input positions. Consistent with incircle3d_sos for hull faces.
+// resolved by raising each point's lifted coordinate |p|^2 by eps^(k+1), eps infinitesimal, with k the
+// rank of p in lexicographic (x, y, z) order (compare_points; 0 = smallest, perturbed most), so that the
+// result depends only on coordinates, never on input positions. Antisymmetric in all five arguments.
+// 0 only when all five points are coplanar. Points must be pairwise distinct for the result to be
+// independent of argument order. Consistent with incircle3d_sos for hull faces.
 int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
                  PredicateCounters& counters);
 
-// For four coplanar points (orient3d(a, b, c, d) == 0, a, b, c not collinear): +1 when d lies inside
-// the circle through a, b, c, -1 outside, with cocircular cases resolved by the same lifted-coordinate
-// perturbation as insphere_sos, so that the result equals the limit of insphere_sos(a, b, c, q, d) for a
-// point q going to infinity on the side of plane (a, b, c) where orient3d(a, b, c, q) > 0.
-// Never 0 for non-collinear a, b, c.
+// For four exactly coplanar points (orient3d(a, b, c, d) == 0, a precondition): +1 when d lies inside
+// the circle through a, b, c, -1 outside, whatever the order of a, b, c; cocircular cases are resolved
+// by the same lifted-coordinate perturbation as insphere_sos. The result equals
+// insphere_sos(a, b, c, q, d) for every q with orient3d(a, b, c, q) > 0, near or far (hence also its
+// limit for q going to infinity on that side): q's own cofactor is orient3d(a, b, c, d) = 0, so the rank
+// given to q, or to an infinite vertex, never matters. Never 0 for non-collinear a, b, c; 0 when collinear.
 int incircle3d_sos(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters);
 
 // Lexicographic comparison of (x, y, z): negative, zero or positive. The order used by the perturbation

@@ -1,0 +1,167 @@
+// Geometric predicates: the floating-point filter first, exact expansion arithmetic when it cannot decide,
+// and symbolic perturbation of the lifted coordinate when the exact value is zero.
+//
+// Based on: H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity" (1990), applied to the lift only
+// as in O. Devillers and M. Teillaud, "Perturbations for Delaunay and weighted Delaunay 3D
+// triangulations" (2011).
+//
+// The perturbation: the point of lexicographic rank k among the points involved has its lift |p|^2
+// raised by eps^(k+1), eps > 0 infinitesimal. The insphere determinant, with rows (p, |p|^2, 1), is linear
+// in the lift column, so the perturbed value is det + sum over points p of eps^(k_p + 1) * cofactor_p:
+// its sign is the sign of det if non-zero, otherwise that of the first non-zero cofactor taken from the
+// lexicographically smallest point up. The cofactors are orient3d determinants of the other four points;
+// the one of e is -orient3d(a, b, c, d), so the result is never zero for a proper tetrahedron. The
+// perturbed lifts define a weighted Delaunay triangulation with infinitesimal weights, so all decisions
+// are mutually consistent; ranks among five points agree with ranks among all points, so they depend
+// only on coordinates.
+#include "predicates/predicates.h"
+
+#include <math.h>
+
+#include "predicates/exact_determinants.h"
+#include "predicates/filters.h"
+
+namespace dbrg {
+namespace {
+
+int orient3d_sign(const double* a, const double* b, const double* c, const double* d) {
+    const int sign = filter::orient3d(a, b, c, d);
+    return sign != filter::UNDECIDED ? sign : exact::orient3d(a, b, c, d);
+}
+
+int orient2d_sign(const double* a, const double* b, const double* c, int u, int v) {
+    const int sign = filter::orient2d(a, b, c, u, v);
+    return sign != filter::UNDECIDED ? sign : exact::orient2d(a, b, c, u, v);
+}
+
+int insphere_sign(const double* a, const double* b, const double* c, const double* d, const double* e,
+                  PredicateCounters& counters) {
+    const int sign = filter::insphere(a, b, c, d, e);
+    if (sign != filter::UNDECIDED) return sign;
+    ++counters.filter_failures;
+    return exact::insphere(a, b, c, d, e);
+}
+
+// order[0..n) = 0..n-1 sorted so that points[order[i]] ascend lexicographically; ties keep argument order.
+void sort_by_coordinates(const double* const* points, int n, int* order) {
+    for (int i = 0; i < n; ++i) {
+        int j = i;
+        while (j > 0 && compare_points(points[order[j - 1]], points[i]) > 0) {
+            order[j] = order[j - 1];
+            --j;
+        }
+        order[j] = i;
+    }
+}
+
+// The sign of the perturbed insphere determinant when the unperturbed one is zero. Row i of the 5x5
+// determinant (rows a..e, lift in column 4) has lift cofactor (-1)^(i+1) orient3d(the other four).
+int insphere_perturbation_sign(const double* const* points) {
+    int order[5];
+    sort_by_coordinates(points, 5, order);
+    for (int r = 0; r < 5; ++r) {
+        const int i = order[r];
+        const double* other[4];
+        for (int j = 0, k = 0; j < 5; ++j)
+            if (j != i) other[k++] = points[j];
+        const int sign = orient3d_sign(other[0], other[1], other[2], other[3]);
+        if (sign != 0) return i % 2 == 0 ? -sign : sign;
+    }
+    return 0;
+}
+
+// The same for the coplanar determinant with rows (p[u], p[v], |p|^2, 1), p = a, b, c, d, whose lift
+// cofactors are (-1)^i orient2d(the other three).
+int incircle_perturbation_sign(const double* const* points, int u, int v) {
+    int order[4];
+    sort_by_coordinates(points, 4, order);
+    for (int r = 0; r < 4; ++r) {
+        const int i = order[r];
+        const double* other[3];
+        for (int j = 0, k = 0; j < 4; ++j)
+            if (j != i) other[k++] = points[j];
+        const int sign = orient2d_sign(other[0], other[1], other[2], u, v);
+        if (sign != 0) return i % 2 == 1 ? -sign : sign;
+    }
+    return 0;
+}
+
+} // namespace
+
+int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters) {
+    ++counters.calls;
+    const int sign = filter::orient3d(a, b, c, d);
+    if (sign != filter::UNDECIDED) return sign;
+    ++counters.filter_failures;
+    return exact::orient3d(a, b, c, d);
+}
+
+int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
+                   PredicateCounters& counters) {
+    ++counters.calls;
+    return insphere_sign(a, b, c, d, e, counters);
+}
+
+int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
+                 PredicateCounters& counters) {
+    ++counters.calls;
+    const int sign = insphere_sign(a, b, c, d, e, counters);
+    if (sign != 0) return sign;
+    ++counters.perturbations;
+    const double* points[5] = {a, b, c, d, e};
+    return insphere_perturbation_sign(points);
+}
+
+// Works in the coordinate plane that drops the axis of the largest normal component of abc, where the
+// projection is best conditioned. On the plane of the points every linear function of the 3D coordinates
+// is a linear function of the two kept ones, so the lifted determinant with the full 3D |p|^2 is the
+// exact 3D circle test up to the sign of the projected orient2d(a, b, c), which the result is multiplied by.
+// The same holds for each perturbation cofactor, which makes the result equal to insphere_sos(a, b, c, q, d)
+// for every q with orient3d(a, b, c, q) > 0: q's own cofactor is orient3d(a, b, c, d) = 0, so q's rank,
+// even for a point at infinity, never matters.
+int incircle3d_sos(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters) {
+    ++counters.calls;
+    double normal[3];
+    {
+        const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        normal[0] = fabs(ab[1] * ac[2] - ab[2] * ac[1]);
+        normal[1] = fabs(ab[2] * ac[0] - ab[0] * ac[2]);
+        normal[2] = fabs(ab[0] * ac[1] - ab[1] * ac[0]);
+    }
+    int axes[3] = {0, 1, 2};
+    for (int i = 1; i < 3; ++i)
+        for (int j = i; j > 0 && normal[axes[j]] > normal[axes[j - 1]]; --j) {
+            const int t = axes[j];
+            axes[j] = axes[j - 1];
+            axes[j - 1] = t;
+        }
+    // The rounded normal only ranks the axes; an exactly zero projected orientation rules an axis out.
+    for (int k = 0; k < 3; ++k) {
+        const int u = (axes[k] + 1) % 3, v = (axes[k] + 2) % 3;
+        const int abc_sign = orient2d_sign(a, b, c, u, v);
+        if (abc_sign == 0) continue;
+        int sign = filter::incircle(a, b, c, d, u, v);
+        if (sign == filter::UNDECIDED) {
+            ++counters.filter_failures;
+            sign = exact::incircle_lifted(a, b, c, d, u, v);
+        }
+        if (sign == 0) {
+            ++counters.perturbations;
+            const double* points[4] = {a, b, c, d};
+            sign = incircle_perturbation_sign(points, u, v);
+        }
+        return abc_sign * sign;
+    }
+    return 0;
+}
+
+int compare_points(const double* a, const double* b) {
+    for (int k = 0; k < 3; ++k) {
+        if (a[k] < b[k]) return -1;
+        if (a[k] > b[k]) return 1;
+    }
+    return 0;
+}
+
+} // namespace dbrg
