@@ -117,7 +117,7 @@ DBRG_API dbrg_status dbrg_params_init(dbrg_params* params) {
     params->struct_size = sizeof *params;
     params->sliver_angle = 5.0 * PI / 6.0;
     params->boundary_factor = 3.0;
-    params->boundary_mean = DBRG_BOUNDARY_MEAN_LOCAL;
+    params->boundary_mean = DBRG_BOUNDARY_MEAN_GLOBAL;
     params->fill_holes = 1;
     params->max_hole_edges = 64;
     params->max_components = 64;

@@ -7,6 +7,7 @@
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
+#include "holes/hole_filling.h"
 #include "surface/surface.h"
 
 namespace dbrg {
@@ -33,38 +34,47 @@ dbrg_status build_tetrahedralization(const ConditionedPoints& conditioned, Conte
     return delaunay.build(conditioned.coordinates.data(), conditioned.size(), context);
 }
 
-// A closed component has no boundary half-edge; it faces outward when its signed volume is positive.
-bool component_faces_inward(const Surface& surface, const Tetrahedralization& delaunay, uint32_t first, uint32_t end) {
-    double volume = 0;
-    for (uint32_t f = first; f < end; ++f) {
-        if (surface.face_removed(f)) continue;
-        for (uint32_t i = 0; i < 3; ++i) {
-            if (surface.is_boundary(3 * f + i)) return false;
-        }
+// Which components to turn over: the closed ones (no boundary half-edge) whose signed volume is negative.
+dbrg_status find_inward_components(const Surface& surface, const Tetrahedralization& delaunay, Context& context,
+                                   Array<uint32_t>& face_component, Array<uint8_t>& flip) {
+    const uint32_t components = surface.label_components(face_component);
+    if (components == NO_FACE) return context.fail_out_of_memory();
+    Array<double> volume(context.memory);
+    Array<uint8_t> open(context.memory);
+    if (!volume.resize(components, 0.0) || !open.resize(components, 0) || !flip.resize(components, 0)) {
+        return context.fail_out_of_memory();
+    }
+    for (uint32_t f = 0; f < surface.face_count(); ++f) {
+        const uint32_t k = face_component[f];
+        if (k == NO_FACE) continue;
+        for (uint32_t i = 0; i < 3; ++i) open[k] |= surface.is_boundary(3 * f + i) ? 1 : 0;
         const Vec3 a = load_vec3(delaunay.point(surface.corner(f, 0)));
         const Vec3 b = load_vec3(delaunay.point(surface.corner(f, 1)));
         const Vec3 c = load_vec3(delaunay.point(surface.corner(f, 2)));
-        volume += dot(a, cross(b, c));
+        volume[k] += dot(a, cross(b, c));
     }
-    return volume < 0;
+    for (uint32_t k = 0; k < components; ++k) flip[k] = !open[k] && volume[k] < 0;
+    context.stats.components = components;
+    return DBRG_OK;
 }
 
 // Triangles in the caller's indices, closed components turned outward, and the boundary loops.
-dbrg_status emit_surface(const Surface& surface, const RegionGrower& grower, const Tetrahedralization& delaunay,
-                         const ConditionedPoints& conditioned, Context& context, SurfaceResult& result) {
+dbrg_status emit_surface(const Surface& surface, const Tetrahedralization& delaunay, const ConditionedPoints& conditioned,
+                         Context& context, SurfaceResult& result) {
     const uint32_t faces = surface.face_count();
+    Array<uint32_t> face_component(context.memory);
+    Array<uint8_t> flip(context.memory);
+    DBRG_PROPAGATE(find_inward_components(surface, delaunay, context, face_component, flip));
     if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
-    for (uint32_t k = 0; k < grower.component_count(); ++k) {
-        const uint32_t first = grower.component_start(k), end = grower.component_start(k + 1);
-        const bool flip = component_faces_inward(surface, delaunay, first, end);
-        for (uint32_t f = first; f < end; ++f) {
-            if (surface.face_removed(f)) continue;
-            result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
-            result.triangles.push_back(conditioned.input_index[surface.corner(f, flip ? 2 : 1)]);
-            result.triangles.push_back(conditioned.input_index[surface.corner(f, flip ? 1 : 2)]);
-        }
+    for (uint32_t f = 0; f < faces; ++f) {
+        if (surface.face_removed(f)) continue;
+        const bool turn = flip[face_component[f]] != 0;
+        result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
+        result.triangles.push_back(conditioned.input_index[surface.corner(f, turn ? 2 : 1)]);
+        result.triangles.push_back(conditioned.input_index[surface.corner(f, turn ? 1 : 2)]);
     }
-    // Boundary loops: from a boundary half-edge u->v, the loop continues with v's outgoing boundary half-edge.
+    // Boundary loops: from a boundary half-edge u->v, the loop continues with the half-edge that leaves
+    // v's fan. (Only closed components are turned over, and they have no loops.)
     Array<uint8_t> visited(context.memory);
     if (!visited.resize(3 * size_t(faces), 0) || !result.loop_offsets.push_back(0)) return context.fail_out_of_memory();
     uint32_t boundary_edges = 0;
@@ -105,8 +115,15 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
     DBRG_PROPAGATE(grower.grow());
     context.stats.seconds_grow = seconds_now() - start;
 
+    if (context.params.fill_holes) {
+        start = seconds_now();
+        HoleFiller filler(delaunay, surface, grower, context);
+        DBRG_PROPAGATE(filler.fill());
+        context.stats.seconds_fill_holes = seconds_now() - start;
+    }
+
     start = seconds_now();
-    DBRG_PROPAGATE(emit_surface(surface, grower, delaunay, conditioned, context, result));
+    DBRG_PROPAGATE(emit_surface(surface, delaunay, conditioned, context, result));
     context.stats.seconds_output = seconds_now() - start;
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }

@@ -145,7 +145,7 @@ typedef enum dbrg_backend {
 
 typedef enum dbrg_boundary_mean {
     DBRG_BOUNDARY_MEAN_LOCAL = 0,  /* r_a over the triangles around the candidate's edge */
-    DBRG_BOUNDARY_MEAN_GLOBAL = 1  /* r_a over all of S, as in the paper (section 4) */
+    DBRG_BOUNDARY_MEAN_GLOBAL = 1  /* r_a over all of S, as in the paper (section 4); the default */
 } dbrg_boundary_mean;
 
 typedef struct dbrg_params {
@@ -162,7 +162,8 @@ typedef struct dbrg_params {
     dbrg_boundary_mean boundary_mean;
     /* Non-zero: fill holes left by rejected candidates (paper section 5). Default 1. */
     uint32_t fill_holes;
-    /* Holes with more boundary edges than this stay open. At least 3. */
+    /* Holes with more boundary edges than this stay open. At least 3; default 64. A loop made by the
+     * open-surface test counts as a hole only up to a quarter of this length: a real border is long. */
     uint32_t max_hole_edges;
     /* How many surface components may be grown from separate seeds (a scan of several objects).
      * At least 1. */
@@ -265,10 +266,11 @@ typedef struct dbrg_stats {
     uint64_t rejected_dihedral;      /* dihedral angle with a neighbour >= sliver_angle */
     uint64_t rejected_boundary;      /* circumradius above M * r_a (open-surface boundary) */
 
-    uint32_t holes_found;
+    uint32_t holes_found;            /* boundary loops left by rejected candidates (not by the open-surface test) */
     uint32_t holes_filled;
-    uint32_t holes_left_open;
-    uint32_t hole_triangles_added;
+    uint32_t holes_left_open;        /* too large (max_hole_edges) or impossible to fill validly */
+    uint32_t hole_triangles_delaunay;/* Delaunay triangles attached by a second growing pass over the holes */
+    uint32_t hole_triangles_added;   /* new (non-Delaunay) triangles over the holes' vertices */
     uint32_t hole_triangles_removed; /* by the recursive enlargement of holes */
 
     uint64_t predicate_calls;        /* orient3d + insphere evaluations */

@@ -30,8 +30,8 @@ const char* const RECONSTRUCT_USAGE =
     "                           open_cylinder, saddle, cube\n"
     "  --demo-points N          about N points (default 20000)\n"
     "  --boundary-factor M      open-surface test: refuse triangles larger than M times the mean\n"
-    "                           circumradius nearby; 0 turns it off (default 3)\n"
-    "  --boundary-mean local|global   the mean of that test: around the edge (default) or over the surface\n"
+    "                           circumradius; 0 turns it off (default 3)\n"
+    "  --boundary-mean local|global   the mean of that test: around the edge, or over the surface (default)\n"
     "  --sliver-angle DEG       largest dihedral angle between neighbouring triangles (default 150)\n"
     "  --no-fill-holes          leave the holes that growing could not close\n"
     "  --max-hole-edges N       holes with more boundary edges stay open (default 64)\n"
@@ -128,6 +128,7 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_unsigned("holes_found", s.holes_found)
         .add_unsigned("holes_filled", s.holes_filled)
         .add_unsigned("holes_left_open", s.holes_left_open)
+        .add_unsigned("hole_triangles_delaunay", s.hole_triangles_delaunay)
         .add_unsigned("hole_triangles_added", s.hole_triangles_added)
         .add_unsigned("hole_triangles_removed", s.hole_triangles_removed)
         .add_unsigned("predicate_calls", s.predicate_calls)

@@ -40,12 +40,11 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       normals_(context.memory),
       radii_(context.memory),
       versions_(context.memory),
-      cause_(context.memory),
-      component_starts_(context.memory) {}
+      cause_(context.memory) {}
 
 dbrg_status RegionGrower::grow() {
     const uint32_t n = delaunay_.vertex_count();
-    if (!surface_.reset(n) || !component_starts_.push_back(0)) return context_.fail_out_of_memory();
+    if (!surface_.reset(n)) return context_.fail_out_of_memory();
 
     // Seeds are tried from the highest point down (§3.1.1); ties go to the lexicographically smaller point,
     // which, as vertex ids are in lexicographic order, is the smaller id.
@@ -55,7 +54,7 @@ dbrg_status RegionGrower::grow() {
     std::stable_sort(by_height.begin(), by_height.end(),
                      [&](uint32_t a, uint32_t b) { return delaunay_.point(a)[2] > delaunay_.point(b)[2]; });
 
-    for (uint32_t i = 0; i < n && component_count() < context_.params.max_components; ++i) {
+    for (uint32_t i = 0; i < n && components_ < context_.params.max_components; ++i) {
         const uint32_t v = by_height[i];
         if (surface_.is_used(v)) continue;
         uint32_t corners[3], tet;
@@ -63,15 +62,15 @@ dbrg_status RegionGrower::grow() {
         if (context_.memory.failed()) return context_.fail_out_of_memory();
         if (!seeded) continue;
         const uint32_t first_face = surface_.face_count();
+        const uint32_t faces_before = surface_.live_face_count();
         DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
         DBRG_PROPAGATE(grow_component());
         DBRG_PROPAGATE(resolve_pinches());
-        if (component_count() > 0 && surface_.face_count() - first_face < MIN_SEEDED_COMPONENT_FACES) {
+        if (components_ > 0 && surface_.live_face_count() - faces_before < MIN_SEEDED_COMPONENT_FACES) {
             remove_component(first_face);
             continue;
         }
-        if (!component_starts_.push_back(surface_.face_count())) return context_.fail_out_of_memory();
-        context_.stats.components = component_count();
+        context_.stats.components = ++components_;
     }
     return context_.report(DBRG_STAGE_GROW, 1.0);
 }
@@ -186,6 +185,7 @@ dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
 // candidate hands over to the next best.
 bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint32_t after_apex, Candidate& out) const {
     const uint32_t face = Surface::face_of(halfedge);
+    if (surface_.face_tet(face) == NO_TET) return false;  // a hole-filling face: no tetrahedron to walk from
     const uint32_t u = surface_.origin(halfedge), v = surface_.target(halfedge);
     const uint32_t opposite = surface_.target(Surface::next(halfedge));
     const Vec3 face_normal = normals_[face];
@@ -296,33 +296,25 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     return DBRG_OK;
 }
 
-// A vertex still pinched when growing stops keeps its largest fan; the faces of the others go, leaving
-// holes for hole filling. Removing a face can pinch one of its other corners, so repeat until none is.
-dbrg_status RegionGrower::resolve_pinches() {
-    Array<uint32_t> doomed(context_.memory);
-    while (surface_.pinched_vertex_count() > 0) {
-        const uint32_t v = surface_.first_pinched_vertex();
-        uint32_t largest = NO_HALFEDGE, largest_size = 0;
-        surface_.for_each_fan(v, [&](uint32_t start) {
-            const uint32_t size = surface_.fan_size(start);
-            if (size > largest_size || (size == largest_size && start < largest)) {
-                largest = start;
-                largest_size = size;
-            }
-        });
-        doomed.clear();
-        bool grown = true;
-        surface_.for_each_fan(v, [&](uint32_t start) {
-            if (start == largest) return;
-            for (uint32_t h = start; h != NO_HALFEDGE; h = surface_.rotate(h)) grown = grown && doomed.push_back(Surface::face_of(h));
-        });
-        if (!grown) return context_.fail_out_of_memory();
-        for (uint32_t f : doomed) {
-            radius_sum_ -= radii_[f];
-            if (!surface_.remove_face(f)) return context_.fail_out_of_memory();
-        }
-        context_.stats.pinch_faces_removed += static_cast<uint32_t>(doomed.size());
+dbrg_status RegionGrower::regrow_holes() {
+    const uint32_t before = surface_.live_face_count();
+    const uint32_t halfedges = 3 * surface_.face_count();
+    for (uint32_t h = 0; h < halfedges; ++h) {
+        if (surface_.is_boundary(h) && cause_[h] == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, -HUGE_VAL, 0));
     }
+    DBRG_PROPAGATE(grow_component());
+    DBRG_PROPAGATE(resolve_pinches());
+    const uint32_t after = surface_.live_face_count();
+    context_.stats.hole_triangles_delaunay += after > before ? after - before : 0;
+    return DBRG_OK;
+}
+
+// Vertices still pinched when growing stops keep only their largest fan (Surface::remove_pinches).
+dbrg_status RegionGrower::resolve_pinches() {
+    Array<uint32_t> removed(context_.memory);
+    if (!surface_.remove_pinches(removed)) return context_.fail_out_of_memory();
+    for (uint32_t f : removed) radius_sum_ -= radii_[f];
+    context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
     return DBRG_OK;
 }
 

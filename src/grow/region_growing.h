@@ -30,12 +30,14 @@ public:
     // component of their own (up to params.max_components). Fills the growing fields of context.stats.
     dbrg_status grow();
 
-    BoundaryCause boundary_cause(uint32_t halfedge) const { return static_cast<BoundaryCause>(cause_[halfedge]); }
-    // Face ids [component_start(i), component_start(i + 1)) form component i; the last start is the face count.
-    uint32_t component_count() const { return static_cast<uint32_t>(component_starts_.size()) - 1; }
-    uint32_t component_start(uint32_t i) const { return component_starts_[i]; }
-    const Vec3& face_normal(uint32_t f) const { return normals_[f]; }
-    double face_radius(uint32_t f) const { return radii_[f]; }
+    // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
+    // changed around it since it was last examined. Adds context.stats.hole_triangles_delaunay.
+    dbrg_status regrow_holes();
+
+    // Why a boundary half-edge is on the boundary; faces added after growing count as unresolved.
+    BoundaryCause boundary_cause(uint32_t halfedge) const {
+        return halfedge < cause_.size() ? static_cast<BoundaryCause>(cause_[halfedge]) : BOUNDARY_UNRESOLVED;
+    }
 
 private:
     enum class Verdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral };
@@ -65,7 +67,7 @@ private:
     Array<double> radii_;            // per face
     Array<uint32_t> versions_;       // per half-edge: bumped whenever a new candidate is computed
     Array<uint8_t> cause_;           // per half-edge: BoundaryCause
-    Array<uint32_t> component_starts_;
+    uint32_t components_ = 0;        // grown from seeds and kept
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
     uint32_t used_vertices_ = 0;
 };

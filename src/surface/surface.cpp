@@ -143,6 +143,55 @@ bool Surface::remove_face(uint32_t f) {
     return true;
 }
 
+bool Surface::remove_pinches(Array<uint32_t>& removed) {
+    while (pinched_vertices_ > 0) {
+        const uint32_t v = first_pinched_vertex();
+        uint32_t largest = NO_HALFEDGE, largest_size = 0;
+        for_each_fan(v, [&](uint32_t start) {
+            const uint32_t size = fan_size(start);
+            if (size > largest_size || (size == largest_size && start < largest)) {
+                largest = start;
+                largest_size = size;
+            }
+        });
+        const size_t first = removed.size();
+        bool grown = true;
+        for_each_fan(v, [&](uint32_t start) {
+            if (start == largest) return;
+            for (uint32_t h = start; h != NO_HALFEDGE; h = rotate(h)) grown = grown && removed.push_back(face_of(h));
+        });
+        if (!grown) return false;
+        for (size_t i = first; i < removed.size(); ++i) {
+            if (!remove_face(removed[i])) return false;
+        }
+    }
+    return true;
+}
+
+uint32_t Surface::label_components(Array<uint32_t>& face_component) const {
+    Array<uint32_t> stack(corners_.memory());
+    if (!face_component.resize(face_count(), NO_FACE)) return NO_FACE;
+    uint32_t components = 0;
+    for (uint32_t seed = 0; seed < face_count(); ++seed) {
+        if (face_removed(seed) || face_component[seed] != NO_FACE) continue;
+        face_component[seed] = components;
+        if (!stack.push_back(seed)) return NO_FACE;
+        while (!stack.empty()) {
+            const uint32_t f = stack.back();
+            stack.pop_back();
+            for (uint32_t h = 3 * f; h < 3 * f + 3; ++h) {
+                if (is_boundary(h)) continue;
+                const uint32_t neighbour = face_of(twins_[h]);
+                if (face_component[neighbour] != NO_FACE) continue;
+                face_component[neighbour] = components;
+                if (!stack.push_back(neighbour)) return NO_FACE;
+            }
+        }
+        ++components;
+    }
+    return components;
+}
+
 uint32_t Surface::truncate(uint32_t first_face) {
     uint32_t freed = 0;
     for (size_t h = 3 * size_t(first_face); h < corners_.size(); ++h) {

@@ -102,6 +102,15 @@ public:
     // Returns false on allocation failure.
     bool remove_face(uint32_t f);
 
+    // Leaves every pinched vertex with its largest fan alone by removing the faces of its other fans (the
+    // removals can pinch further vertices, which are treated in turn). Appends the ids of the removed faces
+    // to `removed`. Returns false on allocation failure.
+    bool remove_pinches(Array<uint32_t>& removed);
+
+    // Numbers the connected components (faces joined through edges) 0, 1, ...: face_component[f] for each
+    // live face, NO_FACE for removed ones. Returns the number of components, or NO_FACE on allocation failure.
+    uint32_t label_components(Array<uint32_t>& face_component) const;
+
     // Removes faces first_face .. face_count() - 1, which must share no edge or vertex with earlier faces
     // (a component grown last). Returns how many vertices that frees.
     uint32_t truncate(uint32_t first_face);

@@ -1,0 +1,279 @@
+// Hole filling: closes the holes that region growing left where every candidate was invalid, first with
+// Delaunay triangles (a second growing pass), then with ear triangles over each hole's own vertices,
+// enlarging a hole that cannot be filled validly and trying again (paper §5).
+//
+// Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
+// reconstruction from unorganized points", Computer-Aided Design 37 (2005), section 5.
+#include "holes/hole_filling.h"
+
+#include <math.h>
+
+#include "core/status.h"
+#include "grow/triangle_geometry.h"
+
+namespace dbrg {
+namespace {
+
+// How often a hole may be enlarged by removing its boundary triangles before it is left open.
+const uint32_t MAX_ENLARGEMENTS = 2;
+
+} // namespace
+
+HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context)
+    : delaunay_(delaunay),
+      surface_(surface),
+      grower_(grower),
+      context_(context),
+      cos_sliver_(cos(context.params.sliver_angle)),
+      restored_open_(context.memory) {}
+
+dbrg_status HoleFiller::fill() {
+    dbrg_stats& stats = context_.stats;
+    stats.holes_found = count_holes();
+    if (stats.holes_found == 0) return DBRG_OK;
+    DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, 0.0));
+
+    // Delaunay triangles first: S has changed since the holes' edges were last examined.
+    DBRG_PROPAGATE(grower_.regrow_holes());
+
+    // Then ears over each remaining hole. Holes are listed first, as filling adds half-edges.
+    added_base_ = surface_.face_count();
+    Array<uint32_t> starts(context_.memory);
+    Array<uint8_t> listed(context_.memory);
+    Array<uint32_t> loop(context_.memory);
+    if (!listed.resize(3 * size_t(added_base_), 0)) return context_.fail_out_of_memory();
+    for (uint32_t h = 0; h < 3 * added_base_; ++h) {
+        if (!surface_.is_boundary(h) || listed[h]) continue;
+        for (uint32_t g = h;;) {
+            listed[g] = 1;
+            g = surface_.fan_exit(g);
+            if (g == h) break;
+        }
+        if (!starts.push_back(h)) return context_.fail_out_of_memory();
+    }
+    Journal journal(context_.memory);
+    for (size_t i = 0; i < starts.size(); ++i) {
+        const uint32_t start = starts[i];
+        if (surface_.face_removed(Surface::face_of(start)) || !surface_.is_boundary(start)) continue;  // gone already
+        if (!collect_hole(start, loop)) continue;
+        journal.added.clear();
+        journal.removed.clear();
+        bool filled = false;
+        DBRG_PROPAGATE(fill_hole(start, 0, journal, filled));
+        if (!filled) {
+            DBRG_PROPAGATE(undo(journal, 0, 0));
+            continue;
+        }
+        stats.hole_triangles_added += static_cast<uint32_t>(journal.added.size());
+        stats.hole_triangles_removed += static_cast<uint32_t>(journal.removed.size());
+        DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 1) / double(starts.size())));
+    }
+    stats.holes_left_open = count_holes();
+    stats.holes_filled = stats.holes_found > stats.holes_left_open ? stats.holes_found - stats.holes_left_open : 0;
+    return context_.memory.failed() ? context_.fail_out_of_memory() : DBRG_OK;
+}
+
+bool HoleFiller::is_open_boundary(uint32_t h) const {
+    if (h < 3 * added_base_ || added_base_ == 0) return grower_.boundary_cause(h) == BOUNDARY_OPEN;
+    const size_t k = h - 3 * size_t(added_base_);
+    return k < restored_open_.size() && restored_open_[k] != 0;
+}
+
+bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
+    loop.clear();
+    bool open = false;
+    uint32_t h = start;
+    do {
+        if (loop.size() >= context_.params.max_hole_edges || !loop.push_back(h)) return false;
+        open = open || is_open_boundary(h);
+        h = surface_.fan_exit(h);
+    } while (h != start);
+    return !open || loop.size() <= open_loop_limit();
+}
+
+// Boundary loops with no open-surface edge, of any length.
+uint32_t HoleFiller::count_holes() const {
+    Array<uint8_t> seen(context_.memory);
+    const uint32_t halfedges = 3 * surface_.face_count();
+    if (!seen.resize(halfedges, 0)) return 0;
+    uint32_t holes = 0;
+    for (uint32_t h = 0; h < halfedges; ++h) {
+        if (!surface_.is_boundary(h) || seen[h]) continue;
+        bool open = false;
+        uint32_t length = 0, g = h;
+        do {
+            seen[g] = 1;
+            ++length;
+            open = open || is_open_boundary(g);
+            g = surface_.fan_exit(g);
+        } while (g != h);
+        holes += !open || length <= open_loop_limit() ? 1 : 0;
+    }
+    return holes;
+}
+
+dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t depth, Journal& journal, bool& filled) {
+    filled = false;
+    Array<uint32_t> loop(context_.memory);
+    Array<uint32_t> corners(context_.memory);
+    if (!collect_hole(start, loop)) return context_.memory.failed() ? context_.fail_out_of_memory() : DBRG_OK;
+    if (!corners.reserve(loop.size())) return context_.fail_out_of_memory();
+    for (uint32_t h : loop) corners.push_back(surface_.origin(h));
+
+    const size_t added_before = journal.added.size();
+    DBRG_PROPAGATE(clip_ears(corners, journal, filled));
+    if (filled || depth == MAX_ENLARGEMENTS) return DBRG_OK;
+
+    // §5: an ear is invalid, so take this attempt back, remove the hole's boundary triangles too, and fill
+    // the larger hole that leaves instead.
+    DBRG_PROPAGATE(undo(journal, added_before, journal.removed.size()));
+    Array<uint32_t> new_starts(context_.memory);
+    DBRG_PROPAGATE(enlarge(loop, journal, new_starts));
+    for (uint32_t s : new_starts) {
+        if (surface_.face_removed(Surface::face_of(s)) || !surface_.is_boundary(s)) continue;  // filled with another
+        bool sub_filled = false;
+        DBRG_PROPAGATE(fill_hole(s, depth + 1, journal, sub_filled));
+        if (!sub_filled) return DBRG_OK;
+    }
+    filled = true;
+    return DBRG_OK;
+}
+
+// Paper §5, Fig. 9: ears at the concave corners (where the hole turns towards itself), smallest circumradius
+// first, each through the topological and geometrical examinations, until the hole is a triangle and closes.
+dbrg_status HoleFiller::clip_ears(Array<uint32_t>& corners, Journal& journal, bool& filled) {
+    filled = false;
+    while (corners.size() >= 3) {
+        const size_t n = corners.size();
+        size_t best = n;
+        double best_radius = HUGE_VAL;
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t previous = corners[(i + n - 1) % n], apex = corners[i], next = corners[(i + 1) % n];
+            const Vec3 a = load_vec3(delaunay_.point(previous)), p = load_vec3(delaunay_.point(apex)),
+                       b = load_vec3(delaunay_.point(next));
+            if (n > 3 && dot(vertex_normal(apex), cross(p - a, b - p)) >= 0) continue;  // convex: no ear here
+            const double r = circumradius(delaunay_.point(previous), delaunay_.point(apex), delaunay_.point(next));
+            if (r < best_radius && ear_is_valid(apex, previous, next, n == 3)) {
+                best = i;
+                best_radius = r;
+            }
+        }
+        if (best == n) return DBRG_OK;
+        const uint32_t apex = corners[best];
+        DBRG_PROPAGATE(add_face(apex, corners[(best + n - 1) % n], corners[(best + 1) % n], NO_TET, nullptr, &journal));
+        if (n == 3) break;
+        for (size_t i = best; i + 1 < n; ++i) corners[i] = corners[i + 1];
+        corners.pop_back();
+    }
+    filled = true;
+    return DBRG_OK;
+}
+
+// The ear (apex, previous, next) must keep S an oriented manifold without pinching it, must not reuse an
+// edge that S has elsewhere (unless it closes the hole), and must not fold onto its neighbours.
+bool HoleFiller::ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, bool closes_hole) const {
+    const FaceCheck check = surface_.check_face(apex, previous, next);
+    if (check.verdict != FaceCheck::valid || check.pinches > 0) return false;
+    if (!closes_hole && check.shared[1] != NO_HALFEDGE) return false;
+    const Vec3 normal = triangle_normal(delaunay_.point(apex), delaunay_.point(previous), delaunay_.point(next));
+    if (squared_length(normal) == 0) return false;
+    for (uint32_t shared : check.shared) {
+        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(Surface::face_of(shared))) <= cos_sliver_) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// Removes the faces along the hole (and any face whose removal pinched a vertex) and returns boundary
+// half-edges from which the larger hole or holes can be found.
+dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, Journal& journal, Array<uint32_t>& new_starts) {
+    Array<uint32_t> pinched(context_.memory);
+    for (uint32_t h : loop) {
+        const uint32_t f = Surface::face_of(h);
+        if (surface_.face_removed(f)) continue;
+        for (uint32_t g = 3 * f; g < 3 * f + 3; ++g) {
+            if (!surface_.is_boundary(g) && !new_starts.push_back(surface_.twin(g))) return context_.fail_out_of_memory();
+        }
+        DBRG_PROPAGATE(remove_and_record(f, journal));
+    }
+    // Removing faces can pinch a vertex; the surface must stay a manifold in between.
+    if (!surface_.remove_pinches(pinched)) return context_.fail_out_of_memory();
+    bool grown = true;
+    for (uint32_t f : pinched) {
+        grown = grown && journal.removed.push_back(describe(f));
+        for (uint32_t i = 0; i < 3; ++i) {
+            surface_.for_each_fan(surface_.corner(f, i), [&](uint32_t start) { grown = grown && new_starts.push_back(start); });
+        }
+    }
+    if (!grown) return context_.fail_out_of_memory();
+    // Keep only starts that are boundary half-edges of live faces now.
+    size_t kept = 0;
+    for (uint32_t s : new_starts) {
+        if (!surface_.face_removed(Surface::face_of(s)) && surface_.is_boundary(s)) new_starts[kept++] = s;
+    }
+    new_starts.shrink(kept);
+    return DBRG_OK;
+}
+
+dbrg_status HoleFiller::remove_and_record(uint32_t f, Journal& journal) {
+    if (!journal.removed.push_back(describe(f)) || !surface_.remove_face(f)) return context_.fail_out_of_memory();
+    return DBRG_OK;
+}
+
+// What it takes to put face f back as it was (its corners stay readable after removal).
+HoleFiller::RemovedFace HoleFiller::describe(uint32_t f) const {
+    RemovedFace record;
+    for (uint32_t i = 0; i < 3; ++i) {
+        record.corners[i] = surface_.corner(f, i);
+        record.causes[i] = is_open_boundary(3 * f + i) ? 1 : 0;
+    }
+    record.tet = surface_.face_tet(f);
+    return record;
+}
+
+// Takes back the journal's entries from the given positions on: removes the faces added, then restores
+// the faces removed, in reverse order, which passes back through valid states only.
+dbrg_status HoleFiller::undo(Journal& journal, size_t added_from, size_t removed_from) {
+    while (journal.added.size() > added_from) {
+        const uint32_t f = journal.added.back();
+        journal.added.pop_back();
+        if (!surface_.face_removed(f) && !surface_.remove_face(f)) return context_.fail_out_of_memory();
+    }
+    while (journal.removed.size() > removed_from) {
+        const RemovedFace record = journal.removed.back();
+        journal.removed.pop_back();
+        DBRG_PROPAGATE(add_face(record.corners[0], record.corners[1], record.corners[2], record.tet, record.causes, nullptr));
+    }
+    return DBRG_OK;
+}
+
+dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, Journal* journal) {
+    const uint32_t f = surface_.add_face(a, b, c, tet);
+    if (f == NO_FACE) return context_.fail_out_of_memory();
+    for (uint32_t i = 0; i < 3; ++i) {
+        if (!restored_open_.push_back(causes ? causes[i] : 0)) return context_.fail_out_of_memory();
+    }
+    if (journal && !journal->added.push_back(f)) return context_.fail_out_of_memory();
+    return DBRG_OK;
+}
+
+Vec3 HoleFiller::face_normal(uint32_t f) const {
+    return triangle_normal(delaunay_.point(surface_.corner(f, 0)), delaunay_.point(surface_.corner(f, 1)),
+                           delaunay_.point(surface_.corner(f, 2)));
+}
+
+// The mean of the unit normals of the faces around v (paper §5).
+Vec3 HoleFiller::vertex_normal(uint32_t v) const {
+    Vec3 sum{0, 0, 0};
+    surface_.for_each_fan(v, [&](uint32_t start) {
+        uint32_t h = start;
+        do {
+            sum = sum + face_normal(Surface::face_of(h));
+            h = surface_.rotate(h);
+        } while (h != NO_HALFEDGE && h != start);
+    });
+    return normalized(sum);
+}
+
+} // namespace dbrg

@@ -1,0 +1,70 @@
+// Hole filling: closes the holes that region growing left where every candidate was invalid, first with
+// Delaunay triangles (a second growing pass), then with ear triangles over each hole's own vertices,
+// enlarging a hole that cannot be filled validly and trying again (paper §5).
+//
+// Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
+// reconstruction from unorganized points", Computer-Aided Design 37 (2005), section 5.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+#include "core/vec3.h"
+#include "delaunay/tetrahedralization.h"
+#include "grow/region_growing.h"
+#include "surface/surface.h"
+
+namespace dbrg {
+
+class HoleFiller {
+public:
+    HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
+
+    // Fills every hole of at most params.max_hole_edges edges that can be filled validly; leaves the
+    // open-surface boundaries (§4) alone. Fills the hole fields of context.stats.
+    dbrg_status fill();
+
+private:
+    struct RemovedFace {
+        uint32_t corners[3];
+        uint32_t tet;
+        uint8_t causes[3];
+    };
+    // One hole's changes, so that a hole that cannot be filled is put back exactly as it was.
+    struct Journal {
+        explicit Journal(Memory& memory) : added(memory), removed(memory) {}
+        Array<uint32_t> added;
+        Array<RemovedFace> removed;
+    };
+
+    bool is_open_boundary(uint32_t halfedge) const;
+    // A loop that the open-surface test made but that is this short is a hole all the same: a real border
+    // is long, while a short loop marks a jump in sampling density (as in CAD tessellations).
+    uint32_t open_loop_limit() const { return context_.params.max_hole_edges / 4; }
+    // The boundary half-edges of the loop through `start`, in order; false when it is longer than
+    // max_hole_edges, or when it is a long border made by the open-surface test.
+    bool collect_hole(uint32_t start, Array<uint32_t>& loop) const;
+    uint32_t count_holes() const;
+    dbrg_status fill_hole(uint32_t start, uint32_t depth, Journal& journal, bool& filled);
+    dbrg_status clip_ears(Array<uint32_t>& corners, Journal& journal, bool& filled);
+    bool ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, bool closes_hole) const;
+    dbrg_status enlarge(const Array<uint32_t>& loop, Journal& journal, Array<uint32_t>& new_starts);
+    dbrg_status remove_and_record(uint32_t face, Journal& journal);
+    RemovedFace describe(uint32_t face) const;
+    dbrg_status undo(Journal& journal, size_t added_from, size_t removed_from);
+    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, Journal* journal);
+    Vec3 face_normal(uint32_t f) const;
+    Vec3 vertex_normal(uint32_t v) const;
+
+    const Tetrahedralization& delaunay_;
+    Surface& surface_;
+    RegionGrower& grower_;
+    Context& context_;
+    double cos_sliver_;
+    // Faces restored after a failed attempt get new ids; their open-surface edges stay marked here.
+    Array<uint8_t> restored_open_;  // per half-edge of faces added by this stage, from added_base_ on
+    uint32_t added_base_ = 0;
+};
+
+} // namespace dbrg
