@@ -19,10 +19,18 @@ struct EdgeKeyHash {
     uint64_t operator()(uint64_t key) const { return key; }
 };
 
+// The bit patterns of a position's three coordinates.
 using Triple = std::array<uint64_t, 3>;
 
 struct TripleHash {
     uint64_t operator()(const Triple& key) const { return key[0] ^ mix_bits(key[1] ^ mix_bits(key[2])); }
+};
+
+// A triangle's three vertex (or position) numbers in increasing order: 12 bytes keep the hash table small.
+using CornerSet = std::array<uint32_t, 3>;
+
+struct CornerSetHash {
+    uint64_t operator()(const CornerSet& key) const { return (uint64_t(key[0]) << 32 | key[1]) ^ mix_bits(key[2]); }
 };
 
 // Disjoint sets over 0..n-1 with path halving.
@@ -73,8 +81,8 @@ Triple position_key(const std::vector<double>& positions, size_t vertex) {
     return key;
 }
 
-Triple sorted_triple(uint64_t a, uint64_t b, uint64_t c) {
-    Triple key = {a, b, c};
+CornerSet sorted_corners(uint32_t a, uint32_t b, uint32_t c) {
+    CornerSet key = {a, b, c};
     std::sort(key.begin(), key.end());
     return key;
 }
@@ -109,28 +117,29 @@ IoStatus compute(const MeshData& mesh, MeshReport& report) {
     report = MeshReport();
     report.faces = face_count;
 
-    std::vector<bool> proper(face_count, false);
-    DenseIndex<Triple, TripleHash> vertex_sets(face_count);
+    // Flags as bytes rather than std::vector<bool>: cheaper random access on millions of entries.
+    std::vector<uint8_t> proper(face_count, 0);
+    DenseIndex<CornerSet, CornerSetHash> vertex_sets(face_count);
     DenseIndex<uint64_t, EdgeKeyHash> edge_index(3 * face_count / 2 + 1);
     std::vector<EdgeUse> edges;
     edges.reserve(3 * face_count / 2 + 1);
     std::vector<uint32_t> corner_edge(3 * face_count, UINT32_MAX);
-    std::vector<bool> vertex_used(vertex_count, false);
+    std::vector<uint8_t> vertex_used(vertex_count, 0);
     uint64_t proper_faces = 0;
 
     for (size_t f = 0; f < face_count; ++f) {
         const uint32_t* corner = &triangles[3 * f];
         bool new_set = false;
-        vertex_sets.insert(sorted_triple(corner[0], corner[1], corner[2]), &new_set);
+        vertex_sets.insert(sorted_corners(corner[0], corner[1], corner[2]), &new_set);
         if (!new_set) ++report.duplicate_faces;
         const bool repeated = corner[0] == corner[1] || corner[1] == corner[2] || corner[0] == corner[2];
         if (repeated || has_zero_area(mesh.positions, corner)) ++report.degenerate_faces;
         if (repeated) continue;
-        proper[f] = true;
+        proper[f] = 1;
         ++proper_faces;
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t from = corner[k], to = corner[(k + 1) % 3];
-            vertex_used[from] = true;
+            vertex_used[from] = 1;
             const uint64_t key = uint64_t(std::min(from, to)) << 32 | std::max(from, to);
             const uint32_t id = edge_index.insert(key);
             if (id == edges.size()) edges.emplace_back();
@@ -149,7 +158,7 @@ IoStatus compute(const MeshData& mesh, MeshReport& report) {
     UnionFind components(face_count);
     UnionFind fans(3 * face_count);
     std::vector<uint32_t> boundary_corners;  // the two corners of each boundary edge, in its face
-    std::vector<bool> nonmanifold_vertex(vertex_count, false);
+    std::vector<uint8_t> nonmanifold_vertex(vertex_count, 0);
     for (size_t f = 0; f < face_count; ++f) {
         if (!proper[f]) continue;
         for (uint32_t k = 0; k < 3; ++k) {
@@ -170,31 +179,31 @@ IoStatus compute(const MeshData& mesh, MeshReport& report) {
                 }
             } else {
                 ++report.edges_nonmanifold;
-                nonmanifold_vertex[from] = nonmanifold_vertex[to] = true;
+                nonmanifold_vertex[from] = nonmanifold_vertex[to] = 1;
             }
         }
     }
 
     // Each fan is one set of corners with one root; a vertex with two roots among its corners is a bow-tie.
-    std::vector<bool> has_fan(vertex_count, false);
+    std::vector<uint8_t> has_fan(vertex_count, 0);
     for (size_t f = 0; f < face_count; ++f) {
         if (!proper[f]) continue;
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t corner = static_cast<uint32_t>(3 * f + k);
             if (fans.root(corner) != corner) continue;
             const uint32_t vertex = triangles[corner];
-            if (has_fan[vertex]) nonmanifold_vertex[vertex] = true;
-            has_fan[vertex] = true;
+            if (has_fan[vertex]) nonmanifold_vertex[vertex] = 1;
+            has_fan[vertex] = 1;
         }
     }
     // Boundary loops join boundary edges at their ends, each end being a fan rather than a vertex, so
     // that the two loops of a bow-tie vertex stay apart.
     UnionFind loops(3 * face_count);
-    std::vector<bool> on_loop(3 * face_count, false);
+    std::vector<uint8_t> on_loop(3 * face_count, 0);
     for (size_t i = 0; i < boundary_corners.size(); i += 2) {
         const uint32_t a = fans.root(boundary_corners[i]), b = fans.root(boundary_corners[i + 1]);
         loops.join(a, b);
-        on_loop[a] = on_loop[b] = true;
+        on_loop[a] = on_loop[b] = 1;
     }
     for (uint32_t node = 0; node < on_loop.size(); ++node) {
         if (on_loop[node] && loops.root(node) == node) ++report.boundary_loops;
@@ -243,20 +252,20 @@ IoStatus add_face_recall(const MeshData& mesh, const MeshData& reference, MeshRe
         DenseIndex<Triple, TripleHash> positions(mesh.vertex_count());
         std::vector<uint32_t> position_of(mesh.vertex_count());
         for (size_t v = 0; v < mesh.vertex_count(); ++v) position_of[v] = positions.insert(position_key(mesh.positions, v));
-        DenseIndex<Triple, TripleHash> triangles(mesh.triangle_count());
+        DenseIndex<CornerSet, CornerSetHash> triangles(mesh.triangle_count());
         for (size_t t = 0; t < mesh.triangle_count(); ++t) {
             const uint32_t* c = &mesh.triangles[3 * t];
-            triangles.insert(sorted_triple(position_of[c[0]], position_of[c[1]], position_of[c[2]]));
+            triangles.insert(sorted_corners(position_of[c[0]], position_of[c[1]], position_of[c[2]]));
         }
         uint64_t found = 0;
         for (size_t t = 0; t < reference.triangle_count(); ++t) {
-            uint64_t ids[3];
+            uint32_t ids[3];
             bool all_present = true;
             for (size_t k = 0; k < 3; ++k) {
                 ids[k] = positions.find(position_key(reference.positions, reference.triangles[3 * t + k]));
                 all_present = all_present && ids[k] != positions.NOT_FOUND;
             }
-            if (all_present && triangles.find(sorted_triple(ids[0], ids[1], ids[2])) != triangles.NOT_FOUND) ++found;
+            if (all_present && triangles.find(sorted_corners(ids[0], ids[1], ids[2])) != triangles.NOT_FOUND) ++found;
         }
         report.reference_faces = reference.triangle_count();
         report.face_recall.reset();
