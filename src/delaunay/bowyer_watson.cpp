@@ -26,9 +26,11 @@ constexpr uint32_t MAX_TET_SLOTS = 1u << 30;
 constexpr uint32_t NO_FACE = 4;
 constexpr uint32_t PROGRESS_INTERVAL = 4096;
 constexpr uint64_t WALK_SEED = 0xbb67ae8584caa73bull;
-// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35); the store is
-// reserved for somewhat fewer and then grows by an eighth at a time, which keeps the peak low.
-constexpr double EXPECTED_TETS_PER_POINT = 6.6;
+// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35), of surface samples
+// usually fewer; the store is reserved for that many and then grows by a sixteenth at a time, which
+// keeps the unused capacity, and so the peak, low.
+constexpr double EXPECTED_TETS_PER_POINT = 6.8;
+constexpr size_t GROWTH_DIVISOR = 16;
 
 // Face lf of a tetrahedron as three local vertices in the order that makes (face, lf) an even
 // permutation of (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.
@@ -45,9 +47,18 @@ struct NewTet {
     uint32_t face;   // the local index of the new point
 };
 
+// For the new point in slot lf and a face g != lf of a new tetrahedron: the slots x, y such that the
+// face, oriented with the tetrahedron's own vertex g on its positive side, runs (new point, x, y).
+constexpr uint8_t DIRECTED_EDGE[4][4][2] = {
+    {{0, 0}, {2, 3}, {3, 1}, {1, 2}},
+    {{3, 2}, {0, 0}, {0, 3}, {2, 0}},
+    {{1, 3}, {3, 0}, {0, 0}, {0, 1}},
+    {{2, 1}, {0, 2}, {1, 0}, {0, 0}},
+};
+
 struct EdgeEntry {
-    uint64_t edge;  // a << 32 | b with a < b (the infinite vertex is the largest id); EMPTY_EDGE if unused
-    uint32_t link;  // the new tetrahedron and its local face waiting for a partner
+    uint64_t edge;  // x << 32 | y, a directed edge; EMPTY_EDGE if unused
+    uint32_t link;  // the new tetrahedron and its local face filed under the edge
 };
 constexpr uint64_t EMPTY_EDGE = UINT64_MAX;
 
@@ -65,10 +76,12 @@ public:
           boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
           used_edges_(memory_) {}
 
-    dbrg_status run(Array<uint32_t>& order);
+    // Inserts points 0 .. count - 1 of `points` in that order (the four first affinely independent
+    // ones first).
+    dbrg_status run(const double* points, uint32_t count);
 
 private:
-    dbrg_status start(Array<uint32_t>& order);
+    dbrg_status start(uint32_t n, uint32_t& c, uint32_t& d);
     dbrg_status insert(uint32_t v);
     dbrg_status locate(const double* p, uint32_t& found);
     bool in_conflict(const uint32_t* tet, const double* p);
@@ -121,7 +134,7 @@ dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
                              MAX_TET_SLOTS);
     }
     if (vertices.size() == vertices.capacity()) {
-        size_t grown = slots + slots / 8 + 64;
+        size_t grown = slots + slots / GROWTH_DIVISOR + 64;
         grown = grown > MAX_TET_SLOTS ? MAX_TET_SLOTS : grown;
         if (!vertices.reserve(4 * grown) || !adjacency.reserve(4 * grown)) return context_.fail_out_of_memory();
     }
@@ -189,36 +202,23 @@ dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
     return context_.fail(DBRG_ERR_INTERNAL, "point location did not terminate (a bug in dbrg)");
 }
 
-dbrg_status DelaunayBuilder::start(Array<uint32_t>& order) {
+dbrg_status DelaunayBuilder::start(uint32_t n, uint32_t& c, uint32_t& d) {
     PredicateCounters& counters = out_.counters;
-    const uint32_t n = static_cast<uint32_t>(order.size());
     // The first four affinely independent points of the order: the first two, the next one off their
     // line, the next one off their plane.
-    uint32_t c_pos = 2;
-    while (c_pos < n && points_collinear(point(order[0]), point(order[1]), point(order[c_pos]), counters)) ++c_pos;
-    uint32_t d_pos = 2;
-    if (c_pos < n) {
-        while (d_pos < n && (d_pos == c_pos || orient3d(point(order[0]), point(order[1]), point(order[c_pos]),
-                                                        point(order[d_pos]), counters) == 0)) {
-            ++d_pos;
-        }
+    c = 2;
+    while (c < n && points_collinear(point(0), point(1), point(c), counters)) ++c;
+    d = 2;
+    if (c < n) {
+        while (d < n && (d == c || orient3d(point(0), point(1), point(c), point(d), counters) == 0)) ++d;
     }
-    if (c_pos >= n || d_pos >= n) {
-        return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are %s", n, c_pos >= n ? "collinear" : "coplanar");
+    if (c >= n || d >= n) {
+        return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are %s", n, c >= n ? "collinear" : "coplanar");
     }
-    // Move them to positions 2 and 3, keeping the rest in order.
-    const uint32_t c = order[c_pos], d = order[d_pos];
-    uint32_t write = c_pos > d_pos ? c_pos : d_pos;
-    for (uint32_t read = write + 1; read-- > 2;) {
-        if (read != c_pos && read != d_pos) order[write--] = order[read];
-    }
-    order[2] = c;
-    order[3] = d;
-
-    uint32_t v[4] = {order[0], order[1], c, d};
+    uint32_t v[4] = {0, 1, c, d};
     if (orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3]), counters) < 0) {
-        v[0] = order[1];
-        v[1] = order[0];
+        v[0] = 1;
+        v[1] = 0;
     }
     const size_t reserve_slots = static_cast<size_t>(EXPECTED_TETS_PER_POINT * n) + 64;
     if (!out_.vertices_.reserve(4 * reserve_slots) || !out_.adjacency_.reserve(4 * reserve_slots) ||
@@ -340,65 +340,65 @@ dbrg_status DelaunayBuilder::insert(uint32_t v) {
 }
 
 dbrg_status DelaunayBuilder::link_new_tets() {
-    // The three faces of a new tetrahedron that contain v meet the other new tetrahedra along the
-    // edges of the cavity boundary; each such edge belongs to exactly two boundary faces, so a hash
-    // table keyed by the edge pairs them up.
+    // The three faces of a new tetrahedron that contain v meet the other new tetrahedra along the edges
+    // of the cavity boundary. Seen from the new tetrahedron, with v first, such a face runs v -> x -> y;
+    // the tetrahedron on the other side sees the same face reversed, v -> y -> x. So a first pass files
+    // every face under its directed edge (x, y) and a second pass looks up (y, x): two loops without
+    // the unpredictable found/not-found branch of a single pass.
     const size_t face_count = new_tets_.size();
     size_t capacity = 64;
-    while (capacity < 4 * face_count) capacity *= 2;
+    while (capacity < 6 * face_count) capacity *= 2;
     if (edges_.size() < capacity) {
-        if (!edges_.resize(capacity) || !used_edges_.reserve(2 * face_count)) return context_.fail_out_of_memory();
+        if (!edges_.resize(capacity)) return context_.fail_out_of_memory();
         for (EdgeEntry& e : edges_) e.edge = EMPTY_EDGE;
     }
-    if (!used_edges_.reserve(2 * face_count)) return context_.fail_out_of_memory();
+    if (!used_edges_.reserve(3 * face_count)) return context_.fail_out_of_memory();
     const uint32_t mask = static_cast<uint32_t>(edges_.size() - 1);
     EdgeEntry* table = edges_.data();
     uint32_t* used = used_edges_.data();
     size_t used_count = 0;
-    static const uint8_t OTHER[4][4][2] = {
-        {{0, 0}, {2, 3}, {1, 3}, {1, 2}},
-        {{2, 3}, {0, 0}, {0, 3}, {0, 2}},
-        {{1, 3}, {0, 3}, {0, 0}, {0, 1}},
-        {{1, 2}, {0, 2}, {0, 1}, {0, 0}},
-    };
     for (size_t i = 0; i < face_count; ++i) {
         const uint32_t s = new_slots_[i];
         const NewTet& made = new_tets_[i];
         for (uint32_t g = 0; g < 4; ++g) {
             if (g == made.face) continue;
-            uint32_t a = made.vertex[OTHER[made.face][g][0]];
-            uint32_t b = made.vertex[OTHER[made.face][g][1]];
-            if (a > b) {
-                const uint32_t t = a;
-                a = b;
-                b = t;
-            }
-            const uint64_t edge = uint64_t(a) << 32 | b;
+            const uint64_t x = made.vertex[DIRECTED_EDGE[made.face][g][0]];
+            const uint64_t y = made.vertex[DIRECTED_EDGE[made.face][g][1]];
+            const uint64_t edge = x << 32 | y;
             uint32_t k = hash_edge(edge) & mask;
-            while (table[k].edge != edge && table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
-            EdgeEntry& e = table[k];
-            if (e.edge == edge) {
-                adjacency_[4 * size_t(s) + g] = e.link;
-                adjacency_[4 * size_t(e.link >> 2) + (e.link & 3)] = s << 2 | g;
-            } else {
-                e.edge = edge;
-                e.link = s << 2 | g;
-                used[used_count++] = k;
-            }
+            while (table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
+            table[k].edge = edge;
+            table[k].link = s << 2 | g;
+            used[used_count++] = k;
         }
     }
-    // Every boundary edge was found twice; empty the table for the next point.
+    bool complete = true;
+    for (size_t i = 0; i < face_count; ++i) {
+        const uint32_t s = new_slots_[i];
+        const NewTet& made = new_tets_[i];
+        for (uint32_t g = 0; g < 4; ++g) {
+            if (g == made.face) continue;
+            const uint64_t x = made.vertex[DIRECTED_EDGE[made.face][g][0]];
+            const uint64_t y = made.vertex[DIRECTED_EDGE[made.face][g][1]];
+            const uint64_t reversed = y << 32 | x;
+            uint32_t k = hash_edge(reversed) & mask;
+            while (table[k].edge != reversed && table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
+            complete &= table[k].edge == reversed;
+            adjacency_[4 * size_t(s) + g] = table[k].link;
+        }
+    }
     for (size_t i = 0; i < used_count; ++i) table[used[i]].edge = EMPTY_EDGE;
+    if (!complete) return context_.fail(DBRG_ERR_INTERNAL, "the cavity boundary is not a closed surface (a bug in dbrg)");
     return DBRG_OK;
 }
 
-dbrg_status DelaunayBuilder::run(Array<uint32_t>& order) {
-    points_ = out_.points_;
-    DBRG_PROPAGATE(start(order));
-    const uint32_t n = static_cast<uint32_t>(order.size());
-    for (uint32_t i = 4; i < n; ++i) {
+dbrg_status DelaunayBuilder::run(const double* points, uint32_t n) {
+    points_ = points;
+    uint32_t c, d;
+    DBRG_PROPAGATE(start(n, c, d));
+    for (uint32_t i = 2; i < n; ++i) {
         if (i % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(i) / n));
-        DBRG_PROPAGATE(insert(order[i]));
+        if (i != c && i != d) DBRG_PROPAGATE(insert(i));
     }
     return context_.report(DBRG_STAGE_DELAUNAY, 1.0);
 }
@@ -419,10 +419,34 @@ dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Cont
     const double sort_start = seconds_now();
     Array<uint32_t> order(context.memory);
     dbrg_status status = brio_hilbert_order(points, count, context, order);
+    // The engine works on a copy of the points in insertion order, numbered by insertion rank: points
+    // that are close in space are then close in memory, which the walk and the sphere tests feel.
+    Array<double> ranked(context.memory);
+    if (status == DBRG_OK && !ranked.resize(3 * size_t(count))) status = context.fail_out_of_memory();
+    if (status == DBRG_OK) {
+        for (uint32_t i = 0; i < count; ++i) {
+            const double* p = points + 3 * size_t(order[i]);
+            ranked[3 * size_t(i)] = p[0];
+            ranked[3 * size_t(i) + 1] = p[1];
+            ranked[3 * size_t(i) + 2] = p[2];
+        }
+    }
     const double insert_start = seconds_now();
     if (status == DBRG_OK) {
         DelaunayBuilder builder(*this, context);
-        status = builder.run(order);
+        status = builder.run(ranked.data(), count);
+    }
+    ranked.release();
+    if (status == DBRG_OK) {
+        // Back to the caller's vertex ids.
+        const uint32_t slots = tet_slots();
+        for (uint32_t t = 0; t < slots; ++t) {
+            if (tet_is_free(t)) continue;
+            uint32_t* tv = vertices_.data() + 4 * size_t(t);
+            for (uint32_t lv = 0; lv < 4; ++lv) {
+                if (tv[lv] != INFINITE_VERTEX) tv[lv] = order[tv[lv]];
+            }
+        }
     }
     order.release();
     if (status == DBRG_OK) {

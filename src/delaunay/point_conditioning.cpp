@@ -37,6 +37,16 @@ double exact_origin(const double* xyz, size_t count, int axis, double minimum, i
     return origin;
 }
 
+struct IndexedPoint {
+    double p[3];
+    uint32_t index;
+};
+
+// Coordinates compared with ==, like the sort: -0.0 and 0.0 are one point.
+bool same_point(const IndexedPoint& a, const IndexedPoint& b) {
+    return a.p[0] == b.p[0] && a.p[1] == b.p[1] && a.p[2] == b.p[2];
+}
+
 // Finds the first point after the lexicographically smallest two that makes them non-collinear, and
 // then one that is not coplanar with the three. Returns the number of affinely independent points
 // found (2, 3 or 4).
@@ -100,39 +110,36 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     out.scale_exponent = -exponent;
     for (int k = 0; k < 3; ++k) out.origin[k] = exact_origin(xyz, count, k, lo[k], exponent);
 
-    // The transformed coordinates in input order, then an index sorted by them (ties by input index,
-    // so the first of a group of equal points is the one with the smallest caller index).
-    Array<double> scaled(context.memory);
-    Array<uint32_t> order(context.memory);
-    if (!scaled.resize(3 * count) || !order.resize(count)) return context.fail_out_of_memory();
+    // The transformed points with their input index, sorted by coordinates and then by index, so the
+    // first of a group of equal points is the one with the smallest caller index.
+    Array<IndexedPoint> sorted(context.memory);
+    if (!sorted.resize(count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) {
-        for (int k = 0; k < 3; ++k) scaled[3 * i + k] = ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent);
-        order[i] = static_cast<uint32_t>(i);
+        IndexedPoint& q = sorted[i];
+        for (int k = 0; k < 3; ++k) q.p[k] = ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent);
+        q.index = static_cast<uint32_t>(i);
     }
-    const double* s = scaled.data();
-    std::sort(order.begin(), order.end(), [s](uint32_t i, uint32_t j) {
-        const int c = compare_points(s + 3 * size_t(i), s + 3 * size_t(j));
-        return c != 0 ? c < 0 : i < j;
+    std::sort(sorted.begin(), sorted.end(), [](const IndexedPoint& a, const IndexedPoint& b) {
+        if (a.p[0] != b.p[0]) return a.p[0] < b.p[0];
+        if (a.p[1] != b.p[1]) return a.p[1] < b.p[1];
+        if (a.p[2] != b.p[2]) return a.p[2] < b.p[2];
+        return a.index < b.index;
     });
 
     size_t distinct = 1;
-    for (size_t i = 1; i < count; ++i) {
-        if (compare_points(s + 3 * size_t(order[i]), s + 3 * size_t(order[i - 1])) != 0) ++distinct;
-    }
+    for (size_t i = 1; i < count; ++i) distinct += !same_point(sorted[i], sorted[i - 1]);
     if (!out.coordinates.reserve(3 * distinct) || !out.input_index.reserve(distinct)) {
         return context.fail_out_of_memory();
     }
     for (size_t i = 0; i < count; ++i) {
-        const double* p = s + 3 * size_t(order[i]);
-        if (i > 0 && compare_points(p, s + 3 * size_t(order[i - 1])) == 0) continue;
-        out.coordinates.push_back(p[0]);
-        out.coordinates.push_back(p[1]);
-        out.coordinates.push_back(p[2]);
-        out.input_index.push_back(order[i]);
+        if (i > 0 && same_point(sorted[i], sorted[i - 1])) continue;
+        out.coordinates.push_back(sorted[i].p[0]);
+        out.coordinates.push_back(sorted[i].p[1]);
+        out.coordinates.push_back(sorted[i].p[2]);
+        out.input_index.push_back(sorted[i].index);
     }
     out.duplicates_merged = static_cast<uint32_t>(count - distinct);
-    scaled.release();
-    order.release();
+    sorted.release();
 
     if (distinct < 4) {
         return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given but only %zu distinct; at least 4 are needed",

@@ -11,10 +11,11 @@
 namespace dbrg {
 namespace {
 
-// Rounds shrink by this factor going backwards from the last one; the first round holds whatever is
-// left below MIN_ROUND points.
+// Rounds shrink by this factor going backwards from the last one, down to about MIN_ROUND points; the
+// round number sits above the Hilbert index in the sort key, so there are at most MAX_ROUNDS.
 constexpr uint32_t ROUND_RATIO = 4;
 constexpr uint32_t MIN_ROUND = 256;
+constexpr int MAX_ROUNDS = 1 << (64 - 3 * HILBERT_BITS);
 constexpr uint64_t SHUFFLE_SEED = 0x6a09e667f3bcc909ull;
 
 // splitmix64: a small, well-mixed generator; one instance per call, seeded with a constant.
@@ -74,17 +75,7 @@ uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
 dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& context, Array<uint32_t>& order) {
     DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.0));
     if (!order.resize(count)) return context.fail_out_of_memory();
-    for (uint32_t i = 0; i < count; ++i) order[i] = i;
     if (count == 0) return DBRG_OK;
-
-    // Fisher-Yates with a fixed seed: a random draw of which points go into which round.
-    uint64_t state = SHUFFLE_SEED;
-    for (uint32_t i = count - 1; i > 0; --i) {
-        const uint32_t j = static_cast<uint32_t>(next_random(state) % (uint64_t(i) + 1));
-        const uint32_t t = order[i];
-        order[i] = order[j];
-        order[j] = t;
-    }
 
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) lo[k] = hi[k] = points[k];
@@ -100,30 +91,37 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& co
     const uint32_t cells = 1u << HILBERT_BITS;
     const double scale = extent > 0 ? cells / extent : 0.0;
 
-    // The largest round is the last: count - count / ROUND_RATIO points, or all of them when the set is
-    // too small to split.
+    // Rounds: the last one takes each point with probability 1 - 1/ROUND_RATIO, the one before it each
+    // remaining point with the same probability, and so on; the first takes the rest. The draw for a
+    // point comes from a generator seeded with its index, so the rounds depend on nothing but the
+    // points, and one sort by (round, Hilbert index) orders everything.
+    int rounds = 1;
+    for (uint64_t size = count; size / ROUND_RATIO >= MIN_ROUND && rounds < MAX_ROUNDS; size /= ROUND_RATIO) ++rounds;
     Array<KeyedIndex> keyed(context.memory);
-    const uint32_t largest_round = count / ROUND_RATIO >= MIN_ROUND ? count - count / ROUND_RATIO : count;
-    if (!keyed.resize(largest_round)) return context.fail_out_of_memory();
-    uint32_t end = count;
-    while (end > 0) {
-        const uint32_t begin = end / ROUND_RATIO >= MIN_ROUND ? end / ROUND_RATIO : 0;
-        for (uint32_t i = begin; i < end; ++i) {
-            const double* p = points + 3 * size_t(order[i]);
-            uint32_t q[3];
-            for (int k = 0; k < 3; ++k) {
-                const double c = (p[k] - lo[k]) * scale;
-                q[k] = c >= cells - 1 ? cells - 1 : static_cast<uint32_t>(c);
-            }
-            keyed[i - begin] = KeyedIndex{hilbert_index(q[0], q[1], q[2], HILBERT_BITS), order[i]};
+    if (!keyed.resize(count)) return context.fail_out_of_memory();
+    for (uint32_t i = 0; i < count; ++i) {
+        const double* p = points + 3 * size_t(i);
+        uint32_t q[3];
+        for (int k = 0; k < 3; ++k) {
+            const double c = (p[k] - lo[k]) * scale;
+            q[k] = c >= cells - 1 ? cells - 1 : static_cast<uint32_t>(c);
         }
-        // Ties (points in one grid cell) go by vertex id, which keeps the order a function of the points.
-        std::sort(keyed.begin(), keyed.begin() + (end - begin), [](const KeyedIndex& a, const KeyedIndex& b) {
-            return a.key != b.key ? a.key < b.key : a.index < b.index;
-        });
-        for (uint32_t i = begin; i < end; ++i) order[i] = keyed[i - begin].index;
-        end = begin;
+        uint64_t state = SHUFFLE_SEED ^ (uint64_t(i) * 0xd1b54a32d192ed03ull);
+        uint64_t draw = next_random(state);
+        int earlier = 0;  // how many rounds before the last one
+        while (earlier + 1 < rounds && draw % ROUND_RATIO == 0) {
+            ++earlier;
+            draw /= ROUND_RATIO;
+        }
+        const uint64_t round = uint64_t(rounds - 1 - earlier);
+        keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | hilbert_index(q[0], q[1], q[2], HILBERT_BITS), i};
     }
+    DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.5));
+    // Ties (points in one grid cell) go by index, which keeps the order a function of the points.
+    std::sort(keyed.begin(), keyed.end(), [](const KeyedIndex& a, const KeyedIndex& b) {
+        return a.key != b.key ? a.key < b.key : a.index < b.index;
+    });
+    for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
     return context.report(DBRG_STAGE_SORT, 1.0);
 }
 
