@@ -316,7 +316,7 @@ TEST_CASE("little-endian binary PLY with float coordinates, int counts and trail
     ByteWriter w;
     w.text("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float32 x\nproperty float32 y\nproperty float32 z\n"
            "property uint8 confidence\nelement face 1\nproperty list int32 int32 vertex_indices\nend_header\n");
-    for (int v = 0; v < 3; ++v) w.put<float>(0.25f * v).put<float>(-1.0f).put<float>(3.0f).put<uint8_t>(9);
+    for (int v = 0; v < 3; ++v) w.put<float>(0.25f * static_cast<float>(v)).put<float>(-1.0f).put<float>(3.0f).put<uint8_t>(9);
     w.put<int32_t>(3).put<int32_t>(0).put<int32_t>(1).put<int32_t>(2);
     w.text("trailing bytes are ignored");
     const MeshData mesh = read_ok(w.bytes, MeshFormat::ply_ascii);  // either PLY format reads any PLY
