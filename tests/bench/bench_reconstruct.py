@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""End-to-end benchmark of `dbrg reconstruct`, printed in the form of the paper's Table 1 (n input points,
+v points used, t triangles, DT, RG, HF and total seconds) with the quality figures of `dbrg stats` beside
+it. Not a test: run it by hand on a release build.
+
+    python3 tests/bench/bench_reconstruct.py [--dbrg build/src/cli/dbrg] [--data ../shared/data] [--large]
+
+Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself) and
+generated samples of closed and open shapes (100k points; 1M and 2M too with --large).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+MESH_SUFFIXES = (".obj", ".off", ".ply")
+
+
+def run_json(command):
+    completed = subprocess.run(command, check=True, capture_output=True, text=True)
+    return json.loads(completed.stdout)
+
+
+def measure(dbrg, source, workdir, reference=None):
+    """Reconstructs `source` (a file, or ('demo', shape, points)) and returns (stats, report)."""
+    output = os.path.join(workdir, "out.ply")
+    if isinstance(source, tuple):
+        _, shape, points = source
+        command = [dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points)]
+    else:
+        command = [dbrg, "reconstruct", source]
+    stats = run_json(command + ["-o", output, "--quiet", "--stats-json", "-"])
+    stats_command = [dbrg, "stats", output]
+    if reference:
+        stats_command += ["--reference", reference]
+    report = run_json(stats_command)
+    return stats, report
+
+
+def row(name, stats, report):
+    recall = report.get("face_recall")
+    return (
+        f"| {name} | {stats['points']} | {stats['vertices_used']} | {stats['triangles']} "
+        f"| {stats['seconds_delaunay']:.3f} | {stats['seconds_growing']:.3f} | {stats['seconds_fill_holes']:.3f} "
+        f"| {stats['seconds_total']:.3f} | {stats['points'] / max(stats['seconds_total'], 1e-9) / 1e6:.2f} "
+        f"| {stats['library_peak_bytes'] / stats['points']:.0f} "
+        f"| {report['edges_boundary']} | {report['boundary_loops']} | {report['edges_nonmanifold']} "
+        f"| {report['vertices_nonmanifold']} | {'yes' if report['oriented'] else 'no'} "
+        f"| {report['genus'] if report['genus'] is not None else '-'} "
+        f"| {'-' if recall is None else f'{recall:.3f}'} |"
+    )
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    here = os.path.dirname(os.path.abspath(__file__))
+    parser.add_argument("--dbrg", default=os.path.join(here, "..", "..", "build", "src", "cli", "dbrg"))
+    parser.add_argument("--data", default=os.path.join(here, "..", "..", "..", "shared", "data"))
+    parser.add_argument("--large", action="store_true", help="also 1M and 2M-point samples")
+    args = parser.parse_args()
+
+    inputs = []
+    if os.path.isdir(args.data):
+        for name in sorted(os.listdir(args.data)):
+            if name.endswith(MESH_SUFFIXES):
+                path = os.path.join(args.data, name)
+                inputs.append((name, path, path))
+    else:
+        print(f"note: no data folder at {args.data}; generated samples only", file=sys.stderr)
+    sizes = [100_000] + ([1_000_000, 2_000_000] if args.large else [])
+    for points in sizes:
+        for shape in ("torus", "bumpy_sphere", "saddle"):
+            inputs.append((f"{shape} {points // 1000}k", ("demo", shape, points), None))
+
+    print("| input | n | v | t | DT s | RG s | HF s | total s | Mpts/s | peak B/pt | boundary edges "
+          "| loops | non-manifold edges | non-manifold vertices | oriented | genus | face recall |")
+    print("|---|" + "---:|" * 16)
+    with tempfile.TemporaryDirectory() as workdir:
+        for name, source, reference in inputs:
+            stats, report = measure(args.dbrg, source, workdir, reference)
+            print(row(name, stats, report), flush=True)
+
+
+if __name__ == "__main__":
+    main()
