@@ -1,10 +1,10 @@
 // The C ABI boundary: argument checks, status codes and result objects. The only file with extern "C".
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include <new>
 
+#include "core/params.h"
 #include "core/point_input.h"
 #include "delaunay/point_conditioning.h"
 #include "pipeline.h"
@@ -12,8 +12,6 @@
 using namespace dbrg;
 
 namespace {
-
-const double PI = 3.14159265358979323846;
 
 // The part of dbrg_params that version 0.1 callers know; struct_size may not be smaller.
 const size_t PARAMS_V0_1_SIZE = sizeof(dbrg_params);
@@ -113,52 +111,28 @@ DBRG_API const char* dbrg_status_string(dbrg_status status) {
 
 DBRG_API dbrg_status dbrg_params_init(dbrg_params* params) {
     if (!params) return DBRG_ERR_INVALID_ARGUMENT;
-    memset(params, 0, sizeof *params);
-    params->struct_size = sizeof *params;
-    params->sliver_angle = 5.0 * PI / 6.0;
-    params->boundary_factor = 3.0;
-    params->boundary_mean = DBRG_BOUNDARY_MEAN_GLOBAL;
-    params->fill_holes = 1;
-    params->max_hole_edges = 64;
-    params->max_components = 64;
-    params->backend = DBRG_BACKEND_BUILTIN;
-    params->threads = 1;
+    fill_default_params(*params);
     return DBRG_OK;
 }
 
 DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* message, size_t capacity) {
-    char text[200];
     write_message(message, capacity, "");
     if (!params) {
         write_message(message, capacity, "params is NULL");
         return DBRG_ERR_INVALID_ARGUMENT;
     }
     if (params->struct_size < PARAMS_V0_1_SIZE || params->struct_size > sizeof(dbrg_params)) {
+        char text[200];
         snprintf(text, sizeof text,
                  "params->struct_size is %zu; this library (%s) knows sizes %zu to %zu: call dbrg_params_init first",
                  params->struct_size, DBRG_VERSION_STRING, PARAMS_V0_1_SIZE, sizeof(dbrg_params));
         write_message(message, capacity, text);
         return DBRG_ERR_INVALID_ARGUMENT;
     }
-    const char* problem = nullptr;
-    if (!(params->sliver_angle > PI / 2 && params->sliver_angle < PI)) {
-        problem = "sliver_angle must lie strictly between pi/2 and pi radians";
-    } else if (!(params->boundary_factor == 0 || (params->boundary_factor > 1 && isfinite(params->boundary_factor)))) {
-        problem = "boundary_factor must be 0 (off) or a finite number greater than 1";
-    } else if (params->boundary_mean != DBRG_BOUNDARY_MEAN_LOCAL && params->boundary_mean != DBRG_BOUNDARY_MEAN_GLOBAL) {
-        problem = "boundary_mean must be DBRG_BOUNDARY_MEAN_LOCAL or DBRG_BOUNDARY_MEAN_GLOBAL";
-    } else if (params->max_hole_edges < 3) {
-        problem = "max_hole_edges must be at least 3";
-    } else if (params->max_components < 1) {
-        problem = "max_components must be at least 1";
-    } else if (params->backend != DBRG_BACKEND_BUILTIN && params->backend != DBRG_BACKEND_TETGEN) {
-        problem = "backend must be DBRG_BACKEND_BUILTIN or DBRG_BACKEND_TETGEN";
-    }
-    if (problem) {
-        write_message(message, capacity, problem);
-        return DBRG_ERR_INVALID_PARAMETER;
-    }
-    return DBRG_OK;
+    const char* problem = find_parameter_problem(*params);
+    if (!problem) return DBRG_OK;
+    write_message(message, capacity, problem);
+    return DBRG_ERR_INVALID_PARAMETER;
 }
 
 DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_allocator* allocator, char* message,

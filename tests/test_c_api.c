@@ -125,6 +125,13 @@ static void test_params(void) {
     params.backend = (dbrg_backend)7;
     CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
     dbrg_params_init(&params);
+    {
+        dbrg_allocator incomplete = {NULL, NULL, NULL, NULL};
+        params.allocator = &incomplete;
+        CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+        CHECK(strstr(message, "allocator") != NULL);
+    }
+    dbrg_params_init(&params);
     params.struct_size = 8;
     CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
     CHECK(strstr(message, "struct_size") != NULL);

@@ -290,6 +290,9 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
         !versions_.resize(versions_.size() + 3, 0) || !cause_.resize(cause_.size() + 3, BOUNDARY_UNRESOLVED)) {
         return context_.fail_out_of_memory();
     }
+    if (observer_ && !observer_(observer_user_, surface_)) {
+        return context_.fail(DBRG_ERR_INTERNAL, "the surface failed its check after face %u was added", f);
+    }
     for (uint32_t i = 0; i < 3; ++i) {
         if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, -HUGE_VAL, 0));
     }

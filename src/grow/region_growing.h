@@ -34,6 +34,13 @@ public:
     // changed around it since it was last examined. Adds context.stats.hole_triangles_delaunay.
     dbrg_status regrow_holes();
 
+    // For tests: called after every face added to S; returning false stops growing with DBRG_ERR_INTERNAL.
+    using StepObserver = bool (*)(void* user, const Surface& surface);
+    void observe_steps(StepObserver observer, void* user) {
+        observer_ = observer;
+        observer_user_ = user;
+    }
+
     // Why a boundary half-edge is on the boundary; faces added after growing count as unresolved.
     BoundaryCause boundary_cause(uint32_t halfedge) const {
         return halfedge < cause_.size() ? static_cast<BoundaryCause>(cause_[halfedge]) : BOUNDARY_UNRESOLVED;
@@ -68,6 +75,8 @@ private:
     Array<uint32_t> versions_;       // per half-edge: bumped whenever a new candidate is computed
     Array<uint8_t> cause_;           // per half-edge: BoundaryCause
     uint32_t components_ = 0;        // grown from seeds and kept
+    StepObserver observer_ = nullptr;
+    void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
     uint32_t used_vertices_ = 0;
 };

@@ -1,0 +1,159 @@
+// Unit tests of region growing below the C API: the surface stays valid after every insertion, the seed
+// follows §3.1.1, components are grown from separate seeds, and the stage honours its limits.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/context.h"
+#include "core/params.h"
+#include "delaunay/point_conditioning.h"
+#include "delaunay/tetrahedralization.h"
+#include "grow/region_growing.h"
+#include "samples/samples.h"
+#include "surface/surface.h"
+
+using namespace dbrg;
+
+namespace {
+
+// Conditioned points, their tetrahedralization and an empty surface, ready to grow.
+struct Setup {
+    explicit Setup(const std::vector<double>& xyz, const dbrg_params* given = nullptr)
+        : context(params_of(given)), points(context.memory), delaunay(context.memory), surface(context.memory) {
+        REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
+        REQUIRE(delaunay.build(points.coordinates.data(), points.size(), context) == DBRG_OK);
+    }
+    static dbrg_params params_of(const dbrg_params* given) {
+        dbrg_params p;
+        fill_default_params(p);
+        return given ? *given : p;
+    }
+    Context context;
+    ConditionedPoints points;
+    Tetrahedralization delaunay;
+    Surface surface;
+};
+
+bool surface_is_valid(void* checks, const Surface& surface) {
+    ++*static_cast<uint32_t*>(checks);
+    char message[200];
+    const bool valid = surface.validate(message, sizeof message);
+    if (!valid) MESSAGE(message);
+    return valid;
+}
+
+uint32_t boundary_halfedges(const Surface& surface) {
+    uint32_t count = 0;
+    for (uint32_t h = 0; h < 3 * surface.face_count(); ++h) count += surface.is_boundary(h) ? 1 : 0;
+    return count;
+}
+
+std::vector<double> shifted(std::vector<double> xyz, double dx) {
+    for (size_t i = 0; i < xyz.size(); i += 3) xyz[i] += dx;
+    return xyz;
+}
+
+} // namespace
+
+TEST_CASE("the surface is a valid oriented manifold after every insertion") {
+    for (samples::Shape shape : {samples::Shape::sphere, samples::Shape::torus, samples::Shape::saddle}) {
+        Setup setup(samples::sample(shape, 600));
+        RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+        uint32_t checks = 0;
+        grower.observe_steps(surface_is_valid, &checks);
+        REQUIRE(grower.grow() == DBRG_OK);
+        CHECK(checks == setup.surface.face_count());
+        CHECK(checks > 1000);
+    }
+}
+
+TEST_CASE("growing starts from the highest point's smallest Delaunay triangle, facing up") {
+    Setup setup(samples::sample(samples::Shape::sphere, 400));
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    REQUIRE(grower.grow() == DBRG_OK);
+    uint32_t top = 0;
+    for (uint32_t v = 1; v < setup.points.size(); ++v) {
+        if (setup.points.point(v)[2] > setup.points.point(top)[2]) top = v;
+    }
+    const uint32_t a = setup.surface.corner(0, 0), b = setup.surface.corner(0, 1), c = setup.surface.corner(0, 2);
+    CHECK((a == top || b == top || c == top));
+    const double* pa = setup.points.point(a);
+    const double* pb = setup.points.point(b);
+    const double* pc = setup.points.point(c);
+    const double normal_z = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0]);
+    CHECK(normal_z > 0);
+}
+
+TEST_CASE("a closed sphere closes without hole filling") {
+    Setup setup(samples::sample(samples::Shape::sphere, 3000));
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    REQUIRE(grower.grow() == DBRG_OK);
+    CHECK(boundary_halfedges(setup.surface) == 0);
+    CHECK(setup.surface.live_face_count() == 2 * setup.points.size() - 4);
+    CHECK(setup.context.stats.components == 1);
+}
+
+TEST_CASE("separate objects are grown from separate seeds, up to max_components") {
+    std::vector<double> xyz = samples::sample(samples::Shape::sphere, 800);
+    const std::vector<double> second = shifted(samples::sample(samples::Shape::sphere, 800, 7), 5.0);
+    xyz.insert(xyz.end(), second.begin(), second.end());
+    {
+        Setup setup(xyz);
+        RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+        REQUIRE(grower.grow() == DBRG_OK);
+        CHECK(setup.context.stats.components == 2);
+        CHECK(boundary_halfedges(setup.surface) == 0);
+        Array<uint32_t> labels(setup.context.memory);
+        CHECK(setup.surface.label_components(labels) == 2);
+    }
+    dbrg_params params;
+    fill_default_params(params);
+    params.max_components = 1;
+    Setup setup(xyz, &params);
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    REQUIRE(grower.grow() == DBRG_OK);
+    CHECK(setup.context.stats.components == 1);
+    uint32_t used = 0;
+    for (uint32_t v = 0; v < setup.points.size(); ++v) used += setup.surface.is_used(v) ? 1 : 0;
+    CHECK(used < setup.points.size() / 2 + 20);
+}
+
+TEST_CASE("stray points do not become components of their own") {
+    std::vector<double> xyz = samples::sample(samples::Shape::sphere, 1000);
+    // A few outliers far from the sphere and from each other.
+    for (double x : {3.0, -4.0, 5.5}) xyz.insert(xyz.end(), {x, 0.3 * x, -0.2 * x});
+    Setup setup(xyz);
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    REQUIRE(grower.grow() == DBRG_OK);
+    CHECK(setup.context.stats.components == 1);
+}
+
+TEST_CASE("the open-surface test refuses candidates and records why the edges stayed open") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::hemisphere, 1500);
+    Setup setup(xyz);
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    REQUIRE(grower.grow() == DBRG_OK);
+    CHECK(setup.context.stats.rejected_boundary > 0);
+    uint32_t open = 0, boundary = 0;
+    for (uint32_t h = 0; h < 3 * setup.surface.face_count(); ++h) {
+        if (!setup.surface.is_boundary(h)) continue;
+        ++boundary;
+        open += grower.boundary_cause(h) == BOUNDARY_OPEN ? 1 : 0;
+    }
+    CHECK(boundary > 50);
+    CHECK(open > boundary / 2);
+}
+
+TEST_CASE("a cancelling progress callback stops growing") {
+    dbrg_params params;
+    fill_default_params(params);
+    int calls = 0;
+    params.progress = [](void* user, dbrg_stage stage, double) -> int {
+        return stage == DBRG_STAGE_GROW && ++*static_cast<int*>(user) > 1;
+    };
+    params.progress_user = &calls;
+    Setup setup(samples::sample(samples::Shape::sphere, 5000), &params);
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    CHECK(grower.grow() == DBRG_ERR_CANCELLED);
+}
