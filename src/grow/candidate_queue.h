@@ -14,8 +14,8 @@ struct Candidate {
     uint32_t halfedge;   // the boundary half-edge of S it attaches to
     uint32_t apex;       // its third vertex
     uint32_t tet;        // a Delaunay tetrahedron that has it as a face
-    uint32_t version;    // the half-edge's version when the candidate was computed; older entries are stale
-    uint32_t postponed;  // 1 once it has been set aside for a retry
+    uint8_t version;     // the half-edge's version when the candidate was computed; older entries are stale
+    uint8_t postponed;   // 1 once it has been set aside for a retry
 };
 
 // Higher smoothness first, then the smaller circumradius, then vertex and half-edge ids, which depend only

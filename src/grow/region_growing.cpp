@@ -37,14 +37,17 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       cos_sliver_(cos(context.params.sliver_angle)),
       queue_(context.memory),
       postponed_(context.memory),
-      normals_(context.memory),
-      radii_(context.memory),
       versions_(context.memory),
       cause_(context.memory) {}
 
 dbrg_status RegionGrower::grow() {
     const uint32_t n = delaunay_.vertex_count();
-    if (!surface_.reset(n)) return context_.fail_out_of_memory();
+    // A closed surface through all n points has 2n - 4 faces: reserve that at once rather than grow by halves.
+    const size_t expected_faces = 2 * size_t(n);
+    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !versions_.reserve(3 * expected_faces) ||
+        !cause_.reserve(3 * expected_faces)) {
+        return context_.fail_out_of_memory();
+    }
 
     // Seeds are tried from the highest point down (§3.1.1); ties go to the lexicographically smaller point,
     // which, as vertex ids are in lexicographic order, is the smaller id.
@@ -188,7 +191,7 @@ bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint
     if (surface_.face_tet(face) == NO_TET) return false;  // a hole-filling face: no tetrahedron to walk from
     const uint32_t u = surface_.origin(halfedge), v = surface_.target(halfedge);
     const uint32_t opposite = surface_.target(Surface::next(halfedge));
-    const Vec3 face_normal = normals_[face];
+    const Vec3 normal_b = face_normal(face);
     const double* pu = delaunay_.point(u);
     const double* pv = delaunay_.point(v);
     bool found = false;
@@ -198,7 +201,7 @@ bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint
         const double r = circumradius(pu, pv, pw);
         if (r < after_radius || (r == after_radius && apex <= after_apex)) return true;
         if (found && (r > out.radius || (r == out.radius && apex > out.apex))) return true;
-        if (dihedral_cosine(face_normal, triangle_normal(pv, pu, pw)) <= cos_sliver_) return true;
+        if (dihedral_cosine(normal_b, triangle_normal(pv, pu, pw)) <= cos_sliver_) return true;
         out.radius = r;
         out.apex = apex;
         out.tet = tet;
@@ -217,7 +220,7 @@ RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothne
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
     const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
     const FaceCheck check = surface_.check_face(v, u, c.apex);
-    smoothness = dihedral_cosine(normal, normals_[Surface::face_of(c.halfedge)]);
+    smoothness = dihedral_cosine(normal, face_normal(Surface::face_of(c.halfedge)));
     switch (check.verdict) {
     case FaceCheck::edge_nonmanifold: return Verdict::edge_nonmanifold;
     case FaceCheck::orientation: return Verdict::orientation;
@@ -229,7 +232,7 @@ RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothne
     bool too_sharp = false;
     for (uint32_t shared : check.shared) {
         if (shared == NO_HALFEDGE) continue;
-        const double cos_theta = dihedral_cosine(normal, normals_[Surface::face_of(shared)]);
+        const double cos_theta = dihedral_cosine(normal, face_normal(Surface::face_of(shared)));
         too_sharp = too_sharp || cos_theta <= cos_sliver_;
         cos_sum += cos_theta;
         ++neighbours;
@@ -259,7 +262,7 @@ double RegionGrower::local_mean_radius(uint32_t halfedge) const {
         const uint32_t start = surface_.vertex_halfedge(end);
         uint32_t h = start;
         do {
-            sum += radii_[Surface::face_of(h)];
+            sum += face_radius(Surface::face_of(h));
             ++count;
             h = surface_.rotate(h);
         } while (h != NO_HALFEDGE && h != start);
@@ -286,8 +289,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
     const double r = circumradius(pa, pb, pc);
     radius_sum_ += r;
-    if (!normals_.push_back(triangle_normal(pa, pb, pc)) || !radii_.push_back(r) ||
-        !versions_.resize(versions_.size() + 3, 0) || !cause_.resize(cause_.size() + 3, BOUNDARY_UNRESOLVED)) {
+    if (!versions_.resize(versions_.size() + 3, 0) || !cause_.resize(cause_.size() + 3, BOUNDARY_UNRESOLVED)) {
         return context_.fail_out_of_memory();
     }
     if (observer_ && !observer_(observer_user_, surface_)) {
@@ -316,19 +318,27 @@ dbrg_status RegionGrower::regrow_holes() {
 dbrg_status RegionGrower::resolve_pinches() {
     Array<uint32_t> removed(context_.memory);
     if (!surface_.remove_pinches(removed)) return context_.fail_out_of_memory();
-    for (uint32_t f : removed) radius_sum_ -= radii_[f];
+    for (uint32_t f : removed) radius_sum_ -= face_radius(f);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
     return DBRG_OK;
 }
 
 // Undoes a component that stayed too small; its faces are the last ones and touch no other component.
 void RegionGrower::remove_component(uint32_t first_face) {
-    for (uint32_t f = first_face; f < surface_.face_count(); ++f) radius_sum_ -= radii_[f];
+    for (uint32_t f = first_face; f < surface_.face_count(); ++f) radius_sum_ -= surface_.face_removed(f) ? 0 : face_radius(f);
     used_vertices_ -= surface_.truncate(first_face);
-    normals_.shrink(first_face);
-    radii_.shrink(first_face);
     versions_.shrink(3 * size_t(first_face));
     cause_.shrink(3 * size_t(first_face));
+}
+
+Vec3 RegionGrower::face_normal(uint32_t f) const {
+    return triangle_normal(delaunay_.point(surface_.corner(f, 0)), delaunay_.point(surface_.corner(f, 1)),
+                           delaunay_.point(surface_.corner(f, 2)));
+}
+
+double RegionGrower::face_radius(uint32_t f) const {
+    return circumradius(delaunay_.point(surface_.corner(f, 0)), delaunay_.point(surface_.corner(f, 1)),
+                        delaunay_.point(surface_.corner(f, 2)));
 }
 
 } // namespace dbrg

@@ -62,6 +62,9 @@ private:
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
     dbrg_status resolve_pinches();
     void remove_component(uint32_t first_face);
+    // Recomputed from the points rather than stored: cheaper in memory, and exact copies of the originals.
+    Vec3 face_normal(uint32_t face) const;
+    double face_radius(uint32_t face) const;
 
     const Tetrahedralization& delaunay_;
     Surface& surface_;
@@ -70,9 +73,9 @@ private:
 
     CandidateQueue queue_;
     Array<Candidate> postponed_;     // set aside once, retried when the queue runs dry
-    Array<Vec3> normals_;            // per face
-    Array<double> radii_;            // per face
-    Array<uint32_t> versions_;       // per half-edge: bumped whenever a new candidate is computed
+    // Per half-edge, bumped whenever a new candidate is computed so older queue entries are skipped. It may
+    // wrap: an old entry taken for current is still examined in full before anything is attached.
+    Array<uint8_t> versions_;
     Array<uint8_t> cause_;           // per half-edge: BoundaryCause
     uint32_t components_ = 0;        // grown from seeds and kept
     StepObserver observer_ = nullptr;

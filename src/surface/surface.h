@@ -45,6 +45,11 @@ public:
     // Prepares per-vertex storage for vertices 0 .. vertex_count - 1. Returns false on allocation failure.
     bool reset(uint32_t vertex_count);
 
+    // Makes room for `faces` faces in one allocation. Returns false on allocation failure.
+    bool reserve_faces(size_t faces) {
+        return corners_.reserve(3 * faces) && twins_.reserve(3 * faces) && tets_.reserve(faces);
+    }
+
     // Face slots, removed ones included.
     uint32_t face_count() const { return static_cast<uint32_t>(corners_.size() / 3); }
     uint32_t live_face_count() const { return face_count() - removed_faces_; }
