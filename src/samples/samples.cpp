@@ -2,6 +2,7 @@
 // spacing is even, with the spacing tuned until the count is close to what was asked.
 #include "samples/samples.h"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -58,6 +59,23 @@ bool project_to_double_torus(Point& p) {
     return false;
 }
 
+// A point on the surface of the box [-hx, hx] x [-hy, hy] x [-hz, hz], uniform by area.
+Point on_box(Random& random, double hx, double hy, double hz) {
+    const double areas[3] = {hy * hz, hx * hz, hx * hy};  // of the faces normal to x, y, z
+    double pick = random.uniform(0, areas[0] + areas[1] + areas[2]);
+    const double side = random.next() % 2 ? 1.0 : -1.0, s = random.uniform(-1, 1), t = random.uniform(-1, 1);
+    if (pick < areas[0]) return {side * hx, s * hy, t * hz};
+    pick -= areas[0];
+    if (pick < areas[1]) return {s * hx, side * hy, t * hz};
+    return {s * hx, t * hy, side * hz};
+}
+
+// The relative spacing of the samples at p: 1 everywhere but on the graded sphere, where it grows by
+// sqrt(10) from the top pole to the bottom one, so the density falls tenfold.
+double relative_spacing(Shape shape, const Point& p) {
+    return shape == Shape::graded_sphere ? std::pow(10.0, 0.25 * (1 - p.z)) : 1.0;
+}
+
 // One random point on the shape, roughly uniform by area (thinning evens out what is left).
 bool raw_point(Shape shape, Random& random, Point& p) {
     switch (shape) {
@@ -97,18 +115,36 @@ bool raw_point(Shape shape, Random& random, Point& p) {
         p = {x, y, x * x - y * y};
         return true;
     }
-    case Shape::cube: {
-        const int face = int(random.next() % 6);
-        const double s = random.uniform(-1, 1), t = random.uniform(-1, 1), side = face % 2 ? 1.0 : -1.0;
-        p = face < 2 ? Point{side, s, t} : face < 4 ? Point{s, side, t} : Point{s, t, side};
+    case Shape::cube:
+        p = on_box(random, 1, 1, 1);
+        return true;
+    case Shape::thin_plate:
+        p = on_box(random, 1, 1, 0.04);
+        return true;
+    case Shape::capped_cylinder: {
+        // Side area 2 pi r h = 2 pi (0.5)(2), each cap pi r^2: pick by area.
+        const double a = random.uniform(0, 2 * PI), pick = random.uniform(0, 2.5);
+        if (pick < 2) {
+            p = {0.5 * std::cos(a), 0.5 * std::sin(a), random.uniform(-1, 1)};
+        } else {
+            const double r = 0.5 * std::sqrt(random.uniform());
+            p = {r * std::cos(a), r * std::sin(a), pick < 2.25 ? -1.0 : 1.0};
+        }
         return true;
     }
+    case Shape::graded_sphere:
+        p = on_unit_sphere(random);
+        return true;
     }
     return false;
 }
 
-// Keeps, in order, each point at least `spacing` away from every point kept before it.
-std::vector<Point> thin(const std::vector<Point>& raw, double spacing) {
+// Keeps, in order, each point at least `spacing` times its relative spacing away from every point kept
+// before it.
+std::vector<Point> thin(Shape shape, const std::vector<Point>& raw, double base_spacing) {
+    double largest = 1;
+    for (const Point& p : raw) largest = std::max(largest, relative_spacing(shape, p));
+    const double spacing = base_spacing * largest;  // the grid cell: no conflict reaches past a neighbour cell
     std::unordered_map<uint64_t, uint32_t> first_in_cell;
     std::vector<uint32_t> next_in_cell;
     std::vector<Point> kept;
@@ -127,7 +163,8 @@ std::vector<Point> thin(const std::vector<Point>& raw, double spacing) {
                          q = next_in_cell[q]) {
                         const Point& o = kept[q];
                         const double dx = o.x - p.x, dy = o.y - p.y, dz = o.z - p.z;
-                        if (dx * dx + dy * dy + dz * dz < spacing * spacing) {
+                        const double needed = base_spacing * relative_spacing(shape, p);
+                        if (dx * dx + dy * dy + dz * dz < needed * needed) {
                             too_close = true;
                             break;
                         }
@@ -157,13 +194,17 @@ ShapeFacts facts(Shape shape) {
     case Shape::open_cylinder: return {"open_cylinder", 0, 2};
     case Shape::saddle: return {"saddle", 0, 1};
     case Shape::cube: return {"cube", 0, 0};
+    case Shape::capped_cylinder: return {"capped_cylinder", 0, 0};
+    case Shape::graded_sphere: return {"graded_sphere", 0, 0};
+    case Shape::thin_plate: return {"thin_plate", 0, 0};
     }
     return {"unknown", 0, 0};
 }
 
 bool shape_from_name(std::string_view name, Shape& shape) {
     for (Shape s : {Shape::sphere, Shape::torus, Shape::double_torus, Shape::bumpy_sphere, Shape::hemisphere,
-                    Shape::open_cylinder, Shape::saddle, Shape::cube}) {
+                    Shape::open_cylinder, Shape::saddle, Shape::cube, Shape::capped_cylinder, Shape::graded_sphere,
+                    Shape::thin_plate}) {
         if (name == facts(s).name) {
             shape = s;
             return true;
@@ -183,12 +224,12 @@ std::vector<double> sample(Shape shape, size_t count, uint64_t seed) {
     }
     // The number of points kept falls as the square of the spacing: a few corrections home in on `count`.
     double spacing = 2.0 / std::sqrt(double(count));
-    std::vector<Point> kept = thin(raw, spacing);
+    std::vector<Point> kept = thin(shape, raw, spacing);
     for (int round = 0; round < 4 && !kept.empty(); ++round) {
         const double ratio = double(kept.size()) / double(count);
         if (std::fabs(ratio - 1) < 0.02) break;
         spacing *= std::sqrt(ratio);
-        kept = thin(raw, spacing);
+        kept = thin(shape, raw, spacing);
     }
     std::vector<double> xyz;
     xyz.reserve(3 * kept.size());

@@ -18,6 +18,9 @@ enum class Shape {
     open_cylinder,  // open: two boundary loops
     saddle,         // the patch z = x^2 - y^2 over [-1, 1]^2 (the paper's hypersheet): one boundary loop
     cube,           // the surface of a cube: closed, genus 0, sharp edges and corners
+    capped_cylinder,// a cylinder with flat caps: closed, genus 0, two circular sharp edges
+    graded_sphere,  // a sphere sampled 10 times more densely at one pole than at the other: closed, genus 0
+    thin_plate,     // a 2 x 2 x 0.08 box: closed, genus 0, two large faces close together
 };
 
 // What is known about a shape's surface.

@@ -1,0 +1,135 @@
+// Poor data (paper §6): non-uniform density, sharp edges, noise and outliers, thin parts. Whatever the
+// data, the output is a valid oriented manifold; where the sampling allows, it is closed with the right genus.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "dbrg/dbrg.h"
+#include "io/mesh_report.h"
+#include "samples/samples.h"
+#include "support/mesh_checks.h"
+
+using namespace dbrg;
+
+namespace {
+
+// The sample moved by up to `fraction` of the median edge of its reconstruction, in a random direction.
+std::vector<double> jittered(const std::vector<double>& xyz, double amplitude, uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    std::vector<double> moved(xyz);
+    for (double& x : moved) x += amplitude * unit(random);
+    return moved;
+}
+
+void require_closed(const std::vector<double>& xyz, int genus, const char* what) {
+    CAPTURE(std::string(what));
+    const test::Reconstruction result = test::reconstruct(xyz);
+    REQUIRE(result.status == DBRG_OK);
+    const io::MeshReport report = test::report_of(xyz, result.triangles);
+    test::require_valid_manifold(report);
+    CHECK(report.edges_boundary == 0);
+    CHECK(report.components == 1);
+    REQUIRE(report.genus.has_value());
+    CHECK(*report.genus == genus);
+    CHECK(test::signed_volume(xyz, result.triangles) > 0);
+}
+
+} // namespace
+
+TEST_CASE("density falling tenfold across a sphere still gives a closed sphere") {
+    for (size_t points : {3000, 12000}) require_closed(samples::sample(samples::Shape::graded_sphere, points), 0, "graded");
+}
+
+TEST_CASE("sharp edges and corners: cube, capped cylinder, fandisk-like solids close up") {
+    for (size_t points : {3000, 10000}) {
+        require_closed(samples::sample(samples::Shape::cube, points), 0, "cube");
+        require_closed(samples::sample(samples::Shape::capped_cylinder, points), 0, "capped cylinder");
+    }
+}
+
+TEST_CASE("sharp edges are reproduced where they are sampled: no triangle of the cube cuts across an edge") {
+    // Random samples rarely fall on an edge, so a triangle has to bridge it; on a lattice they do.
+    std::vector<double> xyz;
+    const int n = 16;
+    for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+            for (int k = 0; k <= n; ++k) {
+                if (i == 0 || j == 0 || k == 0 || i == n || j == n || k == n) {
+                    xyz.insert(xyz.end(), {2.0 * i / n - 1, 2.0 * j / n - 1, 2.0 * k / n - 1});
+                }
+            }
+        }
+    }
+    const test::Reconstruction result = test::reconstruct(xyz);
+    REQUIRE(result.status == DBRG_OK);
+    // Every triangle lies on one face of the cube: its corners share a coordinate at +-1.
+    size_t across = 0;
+    for (size_t t = 0; t < result.triangles.size(); t += 3) {
+        bool on_one_face = false;
+        for (int axis = 0; axis < 3 && !on_one_face; ++axis) {
+            for (double side : {-1.0, 1.0}) {
+                bool all = true;
+                for (int i = 0; i < 3; ++i) all = all && xyz[3 * result.triangles[t + i] + axis] == side;
+                on_one_face = on_one_face || all;
+            }
+        }
+        across += on_one_face ? 0 : 1;
+    }
+    MESSAGE("cube: " << across << " of " << result.triangles.size() / 3 << " triangles cut across an edge");
+    CHECK(across == 0);
+    CHECK(test::report_of(xyz, result.triangles).edges_boundary == 0);
+}
+
+TEST_CASE("thin parts: the two faces of a thin plate are not fused together") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::thin_plate, 6000);
+    require_closed(xyz, 0, "thin plate");
+    const test::Reconstruction result = test::reconstruct(xyz);
+    // A triangle with corners on both large faces, away from the rim, would join the sheets.
+    size_t fused = 0;
+    for (size_t t = 0; t < result.triangles.size(); t += 3) {
+        bool top = false, bottom = false;
+        for (int i = 0; i < 3; ++i) {
+            const double* p = &xyz[3 * result.triangles[t + i]];
+            const bool inner = std::fabs(p[0]) < 0.95 && std::fabs(p[1]) < 0.95;
+            top = top || (inner && p[2] > 0.03);
+            bottom = bottom || (inner && p[2] < -0.03);
+        }
+        fused += top && bottom ? 1 : 0;
+    }
+    CHECK(fused == 0);
+}
+
+TEST_CASE("noise: jitter of a fraction of the spacing still gives a valid manifold, closed for mild noise") {
+    const std::vector<double> clean = samples::sample(samples::Shape::sphere, 4000);
+    const double spacing = std::sqrt(4 * 3.14159265358979 / 4000);
+    require_closed(jittered(clean, 0.1 * spacing, 1), 0, "10% jitter");
+    for (double fraction : {0.3, 0.6}) {
+        CAPTURE(fraction);
+        const std::vector<double> noisy = jittered(clean, fraction * spacing, 2);
+        const test::Reconstruction result = test::reconstruct(noisy);
+        REQUIRE(result.status == DBRG_OK);
+        const io::MeshReport report = test::report_of(noisy, result.triangles);
+        test::require_valid_manifold(report);
+        MESSAGE("jitter " << fraction << " of the spacing: " << report.edges_boundary << " boundary edges, "
+                          << report.components << " components, " << report.faces << " faces");
+        CHECK(report.faces > 2 * 4000 * 9 / 10);
+    }
+}
+
+TEST_CASE("outliers: a few stray points far from the surface do not break it") {
+    std::vector<double> xyz = samples::sample(samples::Shape::torus, 4000);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> box(-2, 2);
+    for (int i = 0; i < 20; ++i) xyz.insert(xyz.end(), {box(random), box(random), box(random)});
+    const test::Reconstruction result = test::reconstruct(xyz);
+    REQUIRE(result.status == DBRG_OK);
+    const io::MeshReport report = test::report_of(xyz, result.triangles);
+    test::require_valid_manifold(report);
+    MESSAGE("torus with 20 outliers: " << report.edges_boundary << " boundary edges, genus "
+                                       << (report.genus ? std::to_string(*report.genus) : "-"));
+    CHECK(report.components == 1);
+}
