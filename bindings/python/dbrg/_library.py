@@ -1,0 +1,115 @@
+"""Finds and loads the dbrg shared library once, checking that its version matches this package.
+
+Search order: the file named by the environment variable DBRG_LIBRARY (nothing else is tried when it
+is set), a copy next to this package, then the system loader (LD_LIBRARY_PATH, ld.so.cache, ...).
+"""
+
+import ctypes
+import ctypes.util
+import os
+import sys
+import threading
+
+from . import _capi
+
+
+class LibraryError(ImportError):
+    """The dbrg shared library could not be found or loaded, or its version does not fit this package."""
+
+
+_lock = threading.Lock()
+_library = None
+_library_path = None
+
+
+def _file_names():
+    major = _capi.DBRG_VERSION_MAJOR
+    if sys.platform == "win32":
+        return ["dbrg.dll", "libdbrg.dll", "dbrg-%d.dll" % major]
+    if sys.platform == "darwin":
+        return ["libdbrg.%d.dylib" % major, "libdbrg.dylib"]
+    return ["libdbrg.so.%d" % major, "libdbrg.so"]
+
+
+def _candidates():
+    """Yields (what to pass to CDLL, whether it is an explicit path)."""
+    explicit = os.environ.get("DBRG_LIBRARY")
+    if explicit:
+        yield explicit, True
+        return
+    here = os.path.dirname(os.path.abspath(__file__))
+    for name in _file_names():
+        path = os.path.join(here, name)
+        if os.path.exists(path):
+            yield path, True
+    # Bare names: the system loader searches its own path.
+    for name in _file_names():
+        yield name, False
+    found = ctypes.util.find_library("dbrg")
+    if found:
+        yield found, False
+
+
+def _compatible(found):
+    """The ABI only grows within a major version, so a newer minor library serves an older package;
+    before 1.0 every minor version may change the ABI, so it must match exactly."""
+    major, minor = found // 10000, found // 100 % 100
+    if major != _capi.DBRG_VERSION_MAJOR:
+        return False
+    if major == 0:
+        return minor == _capi.DBRG_VERSION_MINOR
+    return minor >= _capi.DBRG_VERSION_MINOR
+
+
+def _open():
+    tried = []
+    for target, explicit in _candidates():
+        try:
+            library = ctypes.CDLL(target)
+        except OSError as error:
+            if explicit:
+                origin = "named by DBRG_LIBRARY" if target == os.environ.get("DBRG_LIBRARY") else "next to the package"
+                raise LibraryError("cannot load the dbrg shared library %r %s: %s" % (target, origin, error)) from None
+            tried.append(target)
+            continue
+        try:
+            _capi.declare(library)
+        except AttributeError as error:
+            raise LibraryError(
+                "%s is not a usable dbrg library (%s); this package needs dbrg %s"
+                % (target, error, _capi.DBRG_VERSION_STRING)
+            ) from None
+        found = library.dbrg_version_number()
+        if not _compatible(found):
+            raise LibraryError(
+                "%s is dbrg %s, but this Python package (dbrg %s) needs the library version %d.%d.x; "
+                "point DBRG_LIBRARY at a matching libdbrg"
+                % (target, library.dbrg_version_string().decode(), _capi.DBRG_VERSION_STRING,
+                   _capi.DBRG_VERSION_MAJOR, _capi.DBRG_VERSION_MINOR)
+            )
+        return library, target
+    raise LibraryError(
+        "cannot find the dbrg shared library (tried %s). Build it (meson setup build && ninja -C build) and "
+        "either set DBRG_LIBRARY=/path/to/build/src/libdbrg.so, copy the library next to this package (%s), "
+        "or install it (meson install) where the system loader looks"
+        % (", ".join(tried) or "nothing", os.path.dirname(os.path.abspath(__file__)))
+    )
+
+
+def library():
+    """Returns the loaded ctypes.CDLL, loading it on first use. ctypes.CDLL releases the GIL for the
+    length of every foreign call and takes it back for Python callbacks."""
+    global _library, _library_path
+    if _library is None:
+        with _lock:
+            if _library is None:
+                loaded, path = _open()
+                _library_path = path
+                _library = loaded
+    return _library
+
+
+def library_path():
+    """What the library was loaded from (a path, or a name resolved by the system loader)."""
+    library()
+    return _library_path
