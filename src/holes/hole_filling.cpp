@@ -17,6 +17,11 @@ namespace {
 // How often a hole may be enlarged by removing its boundary triangles before it is left open.
 const uint32_t MAX_ENLARGEMENTS = 2;
 
+// A hole that cannot be filled within theta_sliver is tried once more with this limit: at a sharp tip (a
+// horn, an ear) the only triangles over the hole's vertices fold more sharply than theta_sliver allows,
+// and a closed surface is worth a sharp fold there. Folding back completely is still refused.
+const double LAST_RESORT_FOLD_ANGLE = 175.0 * 3.14159265358979323846 / 180.0;
+
 } // namespace
 
 HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context)
@@ -24,7 +29,6 @@ HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, Reg
       surface_(surface),
       grower_(grower),
       context_(context),
-      cos_sliver_(cos(context.params.sliver_angle)),
       restored_open_(context.memory) {}
 
 dbrg_status HoleFiller::fill() {
@@ -53,17 +57,23 @@ dbrg_status HoleFiller::fill() {
     }
     Journal journal(context_.memory);
     for (size_t i = 0; i < starts.size(); ++i) {
+        journal.added.clear();
+        journal.removed.clear();
         const uint32_t start = starts[i];
         if (surface_.face_removed(Surface::face_of(start)) || !surface_.is_boundary(start)) continue;  // gone already
         if (!collect_hole(start, loop)) continue;
-        journal.added.clear();
-        journal.removed.clear();
+        // An undone attempt restores faces under new ids: find the hole again by its first edge.
+        const uint32_t u = surface_.origin(start), v = surface_.target(start);
         bool filled = false;
-        DBRG_PROPAGATE(fill_hole(start, 0, journal, filled));
-        if (!filled) {
-            DBRG_PROPAGATE(undo(journal, 0, 0));
-            continue;
+        for (double fold_limit : {context_.params.sliver_angle, LAST_RESORT_FOLD_ANGLE}) {
+            if (filled || fold_limit < context_.params.sliver_angle) continue;
+            cos_fold_limit_ = cos(fold_limit);
+            const uint32_t edge = surface_.find_halfedge(u, v);
+            if (edge == NO_HALFEDGE || !surface_.is_boundary(edge)) break;
+            DBRG_PROPAGATE(fill_hole(edge, 0, journal, filled));
+            if (!filled) DBRG_PROPAGATE(undo(journal, 0, 0));
         }
+        if (!filled) continue;
         stats.hole_triangles_added += static_cast<uint32_t>(journal.added.size());
         stats.hole_triangles_removed += static_cast<uint32_t>(journal.removed.size());
         DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 1) / double(starts.size())));
@@ -178,7 +188,7 @@ bool HoleFiller::ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, b
     const Vec3 normal = triangle_normal(delaunay_.point(apex), delaunay_.point(previous), delaunay_.point(next));
     if (squared_length(normal) == 0) return false;
     for (uint32_t shared : check.shared) {
-        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(Surface::face_of(shared))) <= cos_sliver_) {
+        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(Surface::face_of(shared))) <= cos_fold_limit_) {
             return false;
         }
     }

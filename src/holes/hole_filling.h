@@ -61,7 +61,7 @@ private:
     Surface& surface_;
     RegionGrower& grower_;
     Context& context_;
-    double cos_sliver_;
+    double cos_fold_limit_ = 1;  // ears folding at this cosine or below are refused
     // Faces restored after a failed attempt get new ids; their open-surface edges stay marked here.
     Array<uint8_t> restored_open_;  // per half-edge of faces added by this stage, from added_base_ on
     uint32_t added_base_ = 0;

@@ -4,9 +4,12 @@ v points used, t triangles, DT, RG, HF and total seconds) with the quality figur
 it. Not a test: run it by hand on a release build.
 
     python3 tests/bench/bench_reconstruct.py [--dbrg build/src/cli/dbrg] [--data ../shared/data] [--large]
+    python3 tests/bench/bench_reconstruct.py --holes     # boundaries before and after hole filling
 
 Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself) and
-generated samples of closed and open shapes (100k points; 1M and 2M too with --large).
+generated samples of closed and open shapes (100k points; 1M and 2M too with --large). With --holes: the
+data meshes and generated poor data (graded density, sharp edges, a thin plate), each reconstructed
+with and without hole filling.
 """
 import argparse
 import json
@@ -23,7 +26,7 @@ def run_json(command):
     return json.loads(completed.stdout)
 
 
-def measure(dbrg, source, workdir, reference=None):
+def measure(dbrg, source, workdir, reference=None, options=()):
     """Reconstructs `source` (a file, or ('demo', shape, points)) and returns (stats, report)."""
     output = os.path.join(workdir, "out.ply")
     if isinstance(source, tuple):
@@ -31,7 +34,7 @@ def measure(dbrg, source, workdir, reference=None):
         command = [dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points)]
     else:
         command = [dbrg, "reconstruct", source]
-    stats = run_json(command + ["-o", output, "--quiet", "--stats-json", "-"])
+    stats = run_json(command + list(options) + ["-o", output, "--quiet", "--stats-json", "-"])
     stats_command = [dbrg, "stats", output]
     if reference:
         stats_command += ["--reference", reference]
@@ -53,12 +56,29 @@ def row(name, stats, report):
     )
 
 
+def hole_table(dbrg, inputs, workdir):
+    print("| input | boundary edges / loops without filling | with filling | holes found | filled "
+          "| left open | Delaunay triangles | new triangles | removed | genus | face recall |")
+    print("|---|" + "---:|" * 10)
+    for name, source, reference in inputs:
+        before, _ = measure(dbrg, source, workdir, reference, ["--no-fill-holes"])
+        after, report = measure(dbrg, source, workdir, reference)
+        recall = report.get("face_recall")
+        print(f"| {name} | {before['boundary_edges']} / {before['boundary_loops']} "
+              f"| {after['boundary_edges']} / {after['boundary_loops']} | {after['holes_found']} "
+              f"| {after['holes_filled']} | {after['holes_left_open']} | {after['hole_triangles_delaunay']} "
+              f"| {after['hole_triangles_added']} | {after['hole_triangles_removed']} "
+              f"| {report['genus'] if report['genus'] is not None else '-'} "
+              f"| {'-' if recall is None else f'{recall:.3f}'} |", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     here = os.path.dirname(os.path.abspath(__file__))
     parser.add_argument("--dbrg", default=os.path.join(here, "..", "..", "build", "src", "cli", "dbrg"))
     parser.add_argument("--data", default=os.path.join(here, "..", "..", "..", "shared", "data"))
     parser.add_argument("--large", action="store_true", help="also 1M and 2M-point samples")
+    parser.add_argument("--holes", action="store_true", help="boundaries before and after hole filling")
     args = parser.parse_args()
 
     inputs = []
@@ -69,6 +89,12 @@ def main():
                 inputs.append((name, path, path))
     else:
         print(f"note: no data folder at {args.data}; generated samples only", file=sys.stderr)
+    if args.holes:
+        for shape in ("graded_sphere", "cube", "capped_cylinder", "thin_plate"):
+            inputs.append((f"{shape} 10k", ("demo", shape, 10_000), None))
+        with tempfile.TemporaryDirectory() as workdir:
+            hole_table(args.dbrg, inputs, workdir)
+        return
     sizes = [100_000] + ([1_000_000, 2_000_000] if args.large else [])
     for points in sizes:
         for shape in ("torus", "bumpy_sphere", "saddle"):
