@@ -5,6 +5,7 @@
 // n-dimensional Delaunay tessellation with application to Voronoi polytopes" (The Computer Journal 24,
 // 1981); O. Devillers, S. Pion, M. Teillaud, "Walking in a triangulation" (IJFCS 13, 2002) for the
 // randomized visibility walk.
+#include <math.h>
 #include <string.h>
 
 #include "core/status.h"
@@ -87,6 +88,7 @@ private:
     bool in_conflict(const uint32_t* tet, const double* p);
     dbrg_status take_slot(uint32_t& slot);
     dbrg_status link_new_tets();
+    void choose_hint(uint32_t v);
     void refresh_pointers() {
         vertex_ = out_.vertices_.data();
         adjacency_ = out_.adjacency_.data();
@@ -107,6 +109,7 @@ private:
     uint32_t* vertex_ = nullptr;     // out_.vertices_.data(), refreshed whenever the store grows
     uint32_t* adjacency_ = nullptr;  // out_.adjacency_.data()
     uint32_t free_head_ = NO_TET;    // free slots, chained through adjacency entry 0
+    uint32_t count_ = 0;             // points to insert
     uint32_t hint_ = 0;              // a tetrahedron made by the last insertion: the next walk starts there
     uint64_t random_ = WALK_SEED;
 
@@ -329,14 +332,35 @@ dbrg_status DelaunayBuilder::insert(uint32_t v) {
         memcpy(vertex_ + 4 * size_t(s), made.vertex, sizeof made.vertex);
         adjacency_[4 * size_t(s) + made.face] = made.outer;
         adjacency_[4 * size_t(made.outer >> 2) + (made.outer & 3)] = s << 2 | made.face;
-        if (made.vertex[3] != INFINITE_VERTEX) {
-            ++finite_added;
-            hint_ = s;
-        }
+        finite_added += made.vertex[3] != INFINITE_VERTEX;
     }
+    choose_hint(v);
     out_.finite_tets_ += finite_added - finite_removed;
     for (size_t i = 0; i < outside_.size(); ++i) vertex_[4 * size_t(outside_[i]) + 1] &= VERTEX_ID_MASK;
     return link_new_tets();
+}
+
+void DelaunayBuilder::choose_hint(uint32_t v) {
+    // Any start is correct, but on surface samples the tetrahedra around v are long needles, and a walk
+    // from an arbitrary one of them wanders; the one whose centroid is nearest to the next point (v + 1
+    // in insertion order) cuts the walk to a fraction. Plain floating point: only speed depends on it.
+    if (v + 1 >= count_) return;
+    const double* q = point(v + 1);
+    double best = HUGE_VAL;
+    for (size_t i = 0; i < new_tets_.size(); ++i) {
+        const NewTet& made = new_tets_[i];
+        if (made.vertex[3] == INFINITE_VERTEX) continue;
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            const double c = point(made.vertex[0])[k] + point(made.vertex[1])[k] + point(made.vertex[2])[k] +
+                             point(made.vertex[3])[k] - 4 * q[k];
+            d2 += c * c;
+        }
+        if (d2 < best) {
+            best = d2;
+            hint_ = new_slots_[i];
+        }
+    }
 }
 
 dbrg_status DelaunayBuilder::link_new_tets() {
@@ -394,6 +418,7 @@ dbrg_status DelaunayBuilder::link_new_tets() {
 
 dbrg_status DelaunayBuilder::run(const double* points, uint32_t n) {
     points_ = points;
+    count_ = n;
     uint32_t c, d;
     DBRG_PROPAGATE(start(n, c, d));
     for (uint32_t i = 2; i < n; ++i) {

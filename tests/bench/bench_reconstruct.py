@@ -5,6 +5,7 @@ it. Not a test: run it by hand on a release build.
 
     python3 tests/bench/bench_reconstruct.py [--dbrg build/src/cli/dbrg] [--data ../shared/data] [--large]
     python3 tests/bench/bench_reconstruct.py --holes     # boundaries before and after hole filling
+    python3 tests/bench/bench_reconstruct.py --cgal      # against CGAL's advancing front, same inputs
 
 Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself) and
 generated samples of closed and open shapes (100k points; 1M and 2M too with --large). With --holes: the
@@ -72,6 +73,30 @@ def hole_table(dbrg, inputs, workdir):
               f"| {'-' if recall is None else f'{recall:.3f}'} |", flush=True)
 
 
+def compare_with_cgal(dbrg, cgal, inputs, workdir):
+    """dbrg against CGAL's advancing-front reconstruction on the same point files, in the same run."""
+    print("| input | n | dbrg s | CGAL AFSR s | speed-up | dbrg recall | CGAL recall | dbrg boundary edges "
+          "| CGAL boundary edges | dbrg non-manifold edges / vertices | CGAL non-manifold edges / vertices |")
+    print("|---|" + "---:|" * 10)
+    for name, source, reference in inputs:
+        if isinstance(source, tuple):  # generated: write the sample to a file both programs read
+            _, shape, points = source
+            path = os.path.join(workdir, f"{shape}.ply")
+            subprocess.run([dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points),
+                            "-o", path, "--quiet"], check=True)
+            source = path
+        ours, our_report = measure(dbrg, source, workdir, reference)
+        theirs_path = os.path.join(workdir, "cgal.ply")
+        theirs = run_json([cgal, source, theirs_path])
+        their_report = run_json([dbrg, "stats", theirs_path] + (["--reference", reference] if reference else []))
+        recall = lambda report: "-" if report.get("face_recall") is None else f"{report['face_recall']:.3f}"
+        print(f"| {name} | {ours['points']} | {ours['seconds_total']:.3f} | {theirs['seconds']:.3f} "
+              f"| {theirs['seconds'] / max(ours['seconds_total'], 1e-9):.1f}x | {recall(our_report)} "
+              f"| {recall(their_report)} | {our_report['edges_boundary']} | {their_report['edges_boundary']} "
+              f"| {our_report['edges_nonmanifold']} / {our_report['vertices_nonmanifold']} "
+              f"| {their_report['edges_nonmanifold']} / {their_report['vertices_nonmanifold']} |", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     here = os.path.dirname(os.path.abspath(__file__))
@@ -79,6 +104,9 @@ def main():
     parser.add_argument("--data", default=os.path.join(here, "..", "..", "..", "shared", "data"))
     parser.add_argument("--large", action="store_true", help="also 1M and 2M-point samples")
     parser.add_argument("--holes", action="store_true", help="boundaries before and after hole filling")
+    parser.add_argument("--cgal", action="store_true",
+                        help="compare with CGAL's advancing front (tests/bench/cgal-advancing-front, built when "
+                             "libcgal-dev is installed)")
     args = parser.parse_args()
 
     inputs = []
@@ -100,6 +128,14 @@ def main():
         for shape in ("torus", "bumpy_sphere", "saddle"):
             inputs.append((f"{shape} {points // 1000}k", ("demo", shape, points), None))
 
+    if args.cgal:
+        cgal = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(args.dbrg)))),
+                            "tests", "bench", "cgal-advancing-front")
+        if not os.path.exists(cgal):
+            sys.exit(f"no {cgal}: install libcgal-dev and reconfigure")
+        with tempfile.TemporaryDirectory() as workdir:
+            compare_with_cgal(args.dbrg, cgal, inputs, workdir)
+        return
     print("| input | n | v | t | DT s | RG s | HF s | total s | Mpts/s | peak B/pt | boundary edges "
           "| loops | non-manifold edges | non-manifold vertices | oriented | genus | face recall |")
     print("|---|" + "---:|" * 16)
