@@ -22,7 +22,7 @@ void write_message(char* message, size_t capacity, const char* text) {
 
 // Copies the caller's parameters over the defaults, honouring a struct_size from an older header.
 dbrg_status read_params(const dbrg_params* given, dbrg_params& params, char* message, size_t capacity) {
-    dbrg_params_init(&params);
+    fill_default_params(params);
     if (!given) return DBRG_OK;
     const dbrg_status status = dbrg_params_validate(given, message, capacity);
     if (status != DBRG_OK) return status;
@@ -109,9 +109,13 @@ DBRG_API const char* dbrg_status_string(dbrg_status status) {
     return "DBRG_STATUS_UNKNOWN";
 }
 
-DBRG_API dbrg_status dbrg_params_init(dbrg_params* params) {
-    if (!params) return DBRG_ERR_INVALID_ARGUMENT;
-    fill_default_params(*params);
+DBRG_API dbrg_status dbrg_params_init_sized(dbrg_params* params, size_t struct_size) {
+    if (!params || struct_size < PARAMS_V0_1_SIZE) return DBRG_ERR_INVALID_ARGUMENT;
+    dbrg_params defaults;
+    fill_default_params(defaults);
+    const size_t filled = struct_size < sizeof defaults ? struct_size : sizeof defaults;
+    defaults.struct_size = filled;
+    memcpy(params, &defaults, filled);
     return DBRG_OK;
 }
 
@@ -138,7 +142,7 @@ DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* messa
 DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_allocator* allocator, char* message,
                                           size_t capacity) {
     dbrg_params params;
-    dbrg_params_init(&params);
+    fill_default_params(params);
     params.allocator = allocator;
     Context context(params);
     Array<double> xyz(context.memory);
@@ -158,7 +162,7 @@ DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_para
     char message[256];
     const dbrg_status params_status = read_params(given, params, message, sizeof message);
     // Invalid params may carry a bad allocator: report with the system allocator.
-    if (params_status != DBRG_OK) dbrg_params_init(&params);
+    if (params_status != DBRG_OK) fill_default_params(params);
     dbrg_mesh* mesh = create_result<dbrg_mesh>(params);
     if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
     *out_mesh = mesh;
@@ -211,9 +215,8 @@ DBRG_API const uint32_t* dbrg_mesh_boundary_loop(const dbrg_mesh* mesh, uint32_t
 DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats) {
     if (!mesh || !stats || stats->struct_size < sizeof(size_t)) return DBRG_ERR_INVALID_ARGUMENT;
     const size_t size = stats->struct_size < sizeof mesh->stats ? stats->struct_size : sizeof mesh->stats;
-    const size_t caller_size = stats->struct_size;
     memcpy(stats, &mesh->stats, size);
-    stats->struct_size = caller_size;
+    stats->struct_size = size;
     return DBRG_OK;
 }
 
@@ -224,7 +227,7 @@ DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_p
     dbrg_params params;
     char message[256];
     const dbrg_status params_status = read_params(given, params, message, sizeof message);
-    if (params_status != DBRG_OK) dbrg_params_init(&params);
+    if (params_status != DBRG_OK) fill_default_params(params);
     dbrg_tetrahedralization* tets = create_result<dbrg_tetrahedralization>(params);
     if (!tets) return DBRG_ERR_OUT_OF_MEMORY;
     *out = tets;

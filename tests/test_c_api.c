@@ -100,6 +100,18 @@ static void test_params(void) {
     dbrg_params params;
     char message[256];
     CHECK(dbrg_params_init(NULL) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_params_init_sized(&params, 8) == DBRG_ERR_INVALID_ARGUMENT);
+    {
+        /* A caller whose header has a larger struct gets this library's part filled, and is told its size. */
+        struct {
+            dbrg_params params;
+            unsigned char newer_fields[32];
+        } newer;
+        memset(&newer, 0xab, sizeof newer);
+        CHECK(dbrg_params_init_sized(&newer.params, sizeof newer) == DBRG_OK);
+        CHECK(newer.params.struct_size == sizeof(dbrg_params));
+        CHECK(newer.newer_fields[0] == 0xab);
+    }
     CHECK(dbrg_params_init(&params) == DBRG_OK);
     CHECK(params.struct_size == sizeof params);
     CHECK(fabs(params.sliver_angle - 5.0 * 3.14159265358979323846 / 6.0) < 1e-12);
@@ -240,6 +252,7 @@ static void test_reconstruction(void) {
     CHECK(dbrg_mesh_stats(mesh, &stats) == DBRG_ERR_INVALID_ARGUMENT);
     stats.struct_size = sizeof stats;
     CHECK(dbrg_mesh_stats(mesh, &stats) == DBRG_OK);
+    CHECK(stats.struct_size == sizeof stats);
     CHECK(stats.input_points == n);
     CHECK(stats.unique_points == n);
     CHECK(stats.triangles == dbrg_mesh_triangle_count(mesh));

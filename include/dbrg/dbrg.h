@@ -181,9 +181,19 @@ typedef struct dbrg_params {
     void* progress_user;
 } dbrg_params;
 
-/* Fills `params` with the defaults (the paper's values where it gives one) and sets struct_size.
- * Returns DBRG_ERR_INVALID_ARGUMENT when params is NULL. */
-DBRG_API dbrg_status dbrg_params_init(dbrg_params* params);
+/* Fills the first `struct_size` bytes of `params` with the defaults (the paper's values where it gives
+ * one) and sets params->struct_size to the number of bytes filled, which is struct_size or, for a caller
+ * with a newer header, this library's sizeof(dbrg_params). C and C++ callers use dbrg_params_init below;
+ * bindings pass the size of their own copy of the struct.
+ * Returns DBRG_ERR_INVALID_ARGUMENT when params is NULL or struct_size is smaller than the struct of
+ * version 0.1. */
+DBRG_API dbrg_status dbrg_params_init_sized(dbrg_params* params, size_t struct_size);
+
+/* Fills `params` with the defaults; inline so that the size is the one of the header the caller was
+ * compiled with, and an older program never has bytes written past its struct by a newer library. */
+static inline dbrg_status dbrg_params_init(dbrg_params* params) {
+    return dbrg_params_init_sized(params, sizeof(dbrg_params));
+}
 
 /* Checks every field of `params`. Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL, or a
  * struct_size the library does not know), or DBRG_ERR_INVALID_PARAMETER. When `message` is not
@@ -193,7 +203,8 @@ DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* messa
 
 /* Checks an input point array without computing anything: NULL data with a non-zero count, a
  * stride below 3 scalars, count * stride overflow, more than DBRG_MAX_POINTS points, a NaN or
- * infinite coordinate (the message names the first such point), fewer than 4 distinct points.
+ * infinite coordinate (the message names the first such point), fewer than 4 distinct points, all
+ * points collinear or coplanar (DBRG_ERR_DEGENERATE_INPUT).
  * `allocator` may be NULL (malloc). `message` as in dbrg_params_validate. */
 DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_allocator* allocator,
                                           char* message, size_t message_capacity);
@@ -288,7 +299,9 @@ typedef struct dbrg_stats {
     size_t peak_bytes;               /* the most memory held through the allocator at once */
 } dbrg_stats;
 
-/* Copies the statistics of the call that made `mesh` into `stats`, up to stats->struct_size bytes.
+/* Copies the statistics of the call that made `mesh` into `stats`, up to stats->struct_size bytes,
+ * and sets stats->struct_size to the number of bytes filled (smaller than the caller's when the
+ * library is older than the caller's header: the fields past it are left as they were).
  * Returns DBRG_ERR_INVALID_ARGUMENT when mesh or stats is NULL or struct_size is too small to hold
  * the struct_size field. */
 DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats);

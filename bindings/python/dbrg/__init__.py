@@ -187,7 +187,7 @@ def _params(lib, sliver_angle=None, boundary_factor=None, boundary_mean=None, fi
     """A dbrg_params with the library's defaults, overridden by every argument that is not None.
     Range checks are the library's (dbrg_params_validate)."""
     params = _capi.dbrg_params()
-    lib.dbrg_params_init(ctypes.byref(params))
+    lib.dbrg_params_init_sized(ctypes.byref(params), ctypes.sizeof(params))
     if sliver_angle is not None:
         params.sliver_angle = _real("sliver_angle", sliver_angle)
     if boundary_factor is not None:

@@ -159,7 +159,7 @@ FUNCTIONS = {
     "dbrg_version_number": (c_uint32, []),
     "dbrg_version_string": (c_char_p, []),
     "dbrg_status_string": (c_char_p, [c_enum]),
-    "dbrg_params_init": (c_enum, [POINTER(dbrg_params)]),
+    "dbrg_params_init_sized": (c_enum, [POINTER(dbrg_params), c_size_t]),
     "dbrg_params_validate": (c_enum, [POINTER(dbrg_params), c_char_p, c_size_t]),
     "dbrg_points_validate": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_allocator), c_char_p, c_size_t]),
     "dbrg_reconstruct": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_params), POINTER(mesh_p)]),

@@ -169,7 +169,7 @@ pub enum BoundaryMean {
     Global,
 }
 
-/// Reconstruction parameters; `Params::default()` takes the library's defaults (`dbrg_params_init`,
+/// Reconstruction parameters; `Params::default()` takes the library's defaults (`dbrg_params_init_sized`,
 /// the paper's values where it gives one). Change fields after creating it:
 ///
 /// ```
@@ -238,7 +238,7 @@ fn default_raw_params() -> sys::dbrg_params {
         progress_user: ptr::null_mut(),
     };
     // SAFETY: raw is a valid dbrg_params to write.
-    let status = unsafe { sys::dbrg_params_init(&mut raw) };
+    let status = unsafe { sys::dbrg_params_init_sized(&mut raw, std::mem::size_of::<sys::dbrg_params>()) };
     debug_assert_eq!(status, sys::DBRG_OK);
     raw
 }

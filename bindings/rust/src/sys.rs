@@ -144,7 +144,7 @@ extern "C" {
     pub fn dbrg_version_string() -> *const c_char;
     pub fn dbrg_status_string(status: dbrg_status) -> *const c_char;
 
-    pub fn dbrg_params_init(params: *mut dbrg_params) -> dbrg_status;
+    pub fn dbrg_params_init_sized(params: *mut dbrg_params, struct_size: usize) -> dbrg_status;
     pub fn dbrg_params_validate(params: *const dbrg_params, message: *mut c_char, message_capacity: usize) -> dbrg_status;
     pub fn dbrg_points_validate(
         points: *const dbrg_points,
