@@ -268,7 +268,8 @@ typedef struct dbrg_stats {
     uint32_t boundary_edges;         /* edges of the result with one triangle */
     uint32_t boundary_loops;
     uint32_t components;             /* surfaces grown from separate seeds */
-    uint32_t pinch_faces_removed;    /* faces removed where two sheets still met at a vertex when growing ended */
+    uint32_t pinch_faces_removed;    /* faces removed where two sheets still met at a vertex when growing ended,
+                                        with the islands of fewer than 16 faces that this cut off */
 
     uint64_t candidates_evaluated;   /* candidate triangles popped from the priority queue */
     uint64_t rejected_edge_nonmanifold; /* would give an edge a third triangle */

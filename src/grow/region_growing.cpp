@@ -75,6 +75,7 @@ dbrg_status RegionGrower::grow() {
         }
         context_.stats.components = ++components_;
     }
+    DBRG_PROPAGATE(remove_islands());
     return context_.report(DBRG_STAGE_GROW, 1.0);
 }
 
@@ -311,6 +312,15 @@ dbrg_status RegionGrower::regrow_holes() {
     DBRG_PROPAGATE(resolve_pinches());
     const uint32_t after = surface_.live_face_count();
     context_.stats.hole_triangles_delaunay += after > before ? after - before : 0;
+    return DBRG_OK;
+}
+
+// Cutting pinches can leave a few faces joined to nothing else: an island is no object of its own.
+dbrg_status RegionGrower::remove_islands() {
+    Array<uint32_t> removed(context_.memory);
+    if (!surface_.remove_small_components(MIN_SEEDED_COMPONENT_FACES, removed)) return context_.fail_out_of_memory();
+    for (uint32_t f : removed) radius_sum_ -= face_radius(f);
+    context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
     return DBRG_OK;
 }
 

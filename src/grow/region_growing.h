@@ -61,6 +61,7 @@ private:
     dbrg_status postpone(Candidate candidate);
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
     dbrg_status resolve_pinches();
+    dbrg_status remove_islands();
     void remove_component(uint32_t first_face);
     // Recomputed from the points rather than stored: cheaper in memory, and exact copies of the originals.
     Vec3 face_normal(uint32_t face) const;

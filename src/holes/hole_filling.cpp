@@ -17,6 +17,9 @@ namespace {
 // How often a hole may be enlarged by removing its boundary triangles before it is left open.
 const uint32_t MAX_ENLARGEMENTS = 2;
 
+// Components smaller than this that hole filling leaves apart from the rest are removed (as in growing).
+const uint32_t MIN_ISLAND_FACES = 16;
+
 // A hole that cannot be filled within theta_sliver is tried once more with this limit: at a sharp tip (a
 // horn, an ear) the only triangles over the hole's vertices fold more sharply than theta_sliver allows,
 // and a closed surface is worth a sharp fold there. Folding back completely is still refused.
@@ -78,6 +81,10 @@ dbrg_status HoleFiller::fill() {
         stats.hole_triangles_removed += static_cast<uint32_t>(journal.removed.size());
         DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 1) / double(starts.size())));
     }
+    // Enlarging holes can cut a few faces off the rest; such an island is no object of its own.
+    Array<uint32_t> islands(context_.memory);
+    if (!surface_.remove_small_components(MIN_ISLAND_FACES, islands)) return context_.fail_out_of_memory();
+    stats.hole_triangles_removed += static_cast<uint32_t>(islands.size());
     stats.holes_left_open = count_holes();
     stats.holes_filled = stats.holes_found > stats.holes_left_open ? stats.holes_found - stats.holes_left_open : 0;
     return context_.memory.failed() ? context_.fail_out_of_memory() : DBRG_OK;

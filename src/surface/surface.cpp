@@ -192,6 +192,24 @@ uint32_t Surface::label_components(Array<uint32_t>& face_component) const {
     return components;
 }
 
+bool Surface::remove_small_components(uint32_t min_faces, Array<uint32_t>& removed) {
+    Array<uint32_t> face_component(corners_.memory());
+    Array<uint32_t> sizes(corners_.memory());
+    const uint32_t components = label_components(face_component);
+    if (components == NO_FACE || !sizes.resize(components, 0)) return false;
+    for (uint32_t f = 0; f < face_count(); ++f) {
+        if (face_component[f] != NO_FACE) ++sizes[face_component[f]];
+    }
+    uint32_t largest = 0;
+    for (uint32_t k = 1; k < components; ++k) largest = sizes[k] > sizes[largest] ? k : largest;
+    for (uint32_t f = 0; f < face_count(); ++f) {
+        const uint32_t k = face_component[f];
+        if (k == NO_FACE || k == largest || sizes[k] >= min_faces) continue;
+        if (!removed.push_back(f) || !remove_face(f)) return false;
+    }
+    return true;
+}
+
 uint32_t Surface::truncate(uint32_t first_face) {
     uint32_t freed = 0;
     for (size_t h = 3 * size_t(first_face); h < corners_.size(); ++h) {

@@ -116,6 +116,10 @@ public:
     // live face, NO_FACE for removed ones. Returns the number of components, or NO_FACE on allocation failure.
     uint32_t label_components(Array<uint32_t>& face_component) const;
 
+    // Removes every component with fewer than `min_faces` faces, except the largest one. Appends the ids of
+    // the removed faces to `removed`. Returns false on allocation failure.
+    bool remove_small_components(uint32_t min_faces, Array<uint32_t>& removed);
+
     // Removes faces first_face .. face_count() - 1, which must share no edge or vertex with earlier faces
     // (a component grown last). Returns how many vertices that frees.
     uint32_t truncate(uint32_t first_face);
