@@ -5,6 +5,7 @@
 #include "core/point_input.h"
 #include "core/status.h"
 #include "delaunay/point_conditioning.h"
+#include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
 #include "holes/hole_filling.h"
@@ -27,11 +28,9 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
     return context.report(DBRG_STAGE_VALIDATE, 1.0);
 }
 
-dbrg_status build_tetrahedralization(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
-    if (context.params.backend != DBRG_BACKEND_BUILTIN) {
-        return context.fail(DBRG_ERR_UNSUPPORTED, "the TetGen backend is not part of this build (configure with -Dtetgen=enabled)");
-    }
-    return delaunay.build(conditioned.coordinates.data(), conditioned.size(), context);
+dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
+    return build_tetrahedralization(context.params.backend, conditioned.coordinates.data(), conditioned.size(), context,
+                                    delaunay);
 }
 
 // Which components to turn over: the closed ones (no boundary half-edge) whose signed volume is negative.
@@ -107,7 +106,7 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
 
     Tetrahedralization delaunay(context.memory);
-    DBRG_PROPAGATE(build_tetrahedralization(conditioned, context, delaunay));
+    DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
 
     double start = seconds_now();
     Surface surface(context.memory);
@@ -132,7 +131,7 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     ConditionedPoints conditioned(context.memory);
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
     Tetrahedralization delaunay(context.memory);
-    DBRG_PROPAGATE(build_tetrahedralization(conditioned, context, delaunay));
+    DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
 
     // Finite tetrahedra are numbered in slot order; infinite and free slots get no number.
     const uint32_t slots = delaunay.tet_slots();

@@ -151,3 +151,17 @@ TEST_CASE("a lattice cube's surface, massively cospherical, is still a valid man
     test::require_valid_manifold(report);
     MESSAGE("lattice cube: " << report.faces << " faces, " << report.edges_boundary << " boundary edges");
 }
+
+TEST_CASE("the TetGen backend gives the same surface, or says it is not built in") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::torus, 3000);
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.backend = DBRG_BACKEND_TETGEN;
+    const test::Reconstruction with_tetgen = test::reconstruct(xyz, &params);
+#ifdef DBRG_HAVE_TETGEN
+    REQUIRE(with_tetgen.status == DBRG_OK);
+    CHECK(with_tetgen.triangles == test::reconstruct(xyz).triangles);
+#else
+    CHECK(with_tetgen.status == DBRG_ERR_UNSUPPORTED);
+#endif
+}
