@@ -21,7 +21,7 @@ struct Command {
 // To connect a command, put its run_ function in place of nullptr.
 const Command COMMANDS[] = {
     {"reconstruct", dbrg::cli::run_reconstruct, "INPUT -o OUTPUT [options]   reconstruct a surface from a point cloud"},
-    {"delaunay", nullptr, "INPUT [options]              Delaunay tetrahedralization of a point cloud"},
+    {"delaunay", dbrg::cli::run_delaunay, "INPUT [options]              Delaunay tetrahedralization of a point cloud"},
     {"stats", dbrg::cli::run_stats, "MESH [--points INPUT]        JSON report on a triangle mesh"},
 };
 
