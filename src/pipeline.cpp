@@ -21,6 +21,8 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
     Array<double> xyz(context.memory);
     DBRG_PROPAGATE(read_points(points, context, xyz));
     DBRG_PROPAGATE(condition_points(xyz.data(), points->count, context, conditioned));
+    xyz.release();
+    DBRG_PROPAGATE(renumber_spatially(conditioned, context));
     context.stats.input_points = static_cast<uint32_t>(points->count);
     context.stats.unique_points = conditioned.size();
     context.stats.duplicates_merged = conditioned.duplicates_merged;

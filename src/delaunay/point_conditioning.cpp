@@ -8,6 +8,7 @@
 
 #include "core/status.h"
 #include "delaunay/affine_checks.h"
+#include "delaunay/spatial_sort.h"
 #include "predicates/predicates.h"
 
 namespace dbrg {
@@ -167,6 +168,24 @@ dbrg_status condition_points(const double* xyz, size_t count, Context& context, 
         out.input_index.release();
     }
     return status;
+}
+
+dbrg_status renumber_spatially(ConditionedPoints& points, Context& context) {
+    const uint32_t n = points.size();
+    Array<uint32_t> order(context.memory);
+    Array<double> coordinates(context.memory);
+    Array<uint32_t> input_index(context.memory);
+    if (!hilbert_order(points.coordinates.data(), n, order) || !coordinates.resize(3 * size_t(n)) ||
+        !input_index.resize(n)) {
+        return context.fail_out_of_memory();
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        for (int k = 0; k < 3; ++k) coordinates[3 * size_t(i) + k] = points.coordinates[3 * size_t(order[i]) + k];
+        input_index[i] = points.input_index[order[i]];
+    }
+    points.coordinates.swap(coordinates);
+    points.input_index.swap(input_index);
+    return DBRG_OK;
 }
 
 } // namespace dbrg

@@ -37,4 +37,10 @@ struct ConditionedPoints {
 // is then left empty.
 dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out);
 
+// Renumbers conditioned points along a Hilbert curve, so that points close in space are close in memory
+// for the tetrahedralization and region growing that follow. The numbering stays a function of the
+// coordinates alone (the curve over the bounding box; ties by lexicographic order), so results still do
+// not depend on the caller's order. Returns DBRG_ERR_OUT_OF_MEMORY (with the message set) on failure.
+dbrg_status renumber_spatially(ConditionedPoints& points, Context& context);
+
 } // namespace dbrg

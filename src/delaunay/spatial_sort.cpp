@@ -42,6 +42,46 @@ struct KeyedIndex {
     uint32_t index;
 };
 
+// Maps points to the cells of the 2^HILBERT_BITS grid over their bounding box.
+class HilbertGrid {
+public:
+    HilbertGrid(const double* points, uint32_t count) {
+        double hi[3];
+        for (int k = 0; k < 3; ++k) lo_[k] = hi[k] = points[k];
+        for (uint32_t i = 1; i < count; ++i) {
+            for (int k = 0; k < 3; ++k) {
+                const double v = points[3 * size_t(i) + k];
+                lo_[k] = v < lo_[k] ? v : lo_[k];
+                hi[k] = v > hi[k] ? v : hi[k];
+            }
+        }
+        double extent = 0;
+        for (int k = 0; k < 3; ++k) extent = hi[k] - lo_[k] > extent ? hi[k] - lo_[k] : extent;
+        scale_ = extent > 0 ? CELLS / extent : 0.0;
+    }
+
+    uint64_t key(const double* p) const {
+        uint32_t q[3];
+        for (int k = 0; k < 3; ++k) {
+            const double c = (p[k] - lo_[k]) * scale_;
+            q[k] = c >= CELLS - 1 ? CELLS - 1 : static_cast<uint32_t>(c);
+        }
+        return hilbert_index(q[0], q[1], q[2], HILBERT_BITS);
+    }
+
+private:
+    static constexpr uint32_t CELLS = 1u << HILBERT_BITS;
+    double lo_[3];
+    double scale_;
+};
+
+// Sorts by key; ties (points in one grid cell) go by index, which keeps the order a function of the points.
+void sort_keyed(Array<KeyedIndex>& keyed) {
+    std::sort(keyed.begin(), keyed.end(), [](const KeyedIndex& a, const KeyedIndex& b) {
+        return a.key != b.key ? a.key < b.key : a.index < b.index;
+    });
+}
+
 } // namespace
 
 uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
@@ -77,19 +117,7 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& co
     if (!order.resize(count)) return context.fail_out_of_memory();
     if (count == 0) return DBRG_OK;
 
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = points[k];
-    for (uint32_t i = 1; i < count; ++i) {
-        for (int k = 0; k < 3; ++k) {
-            const double v = points[3 * size_t(i) + k];
-            lo[k] = v < lo[k] ? v : lo[k];
-            hi[k] = v > hi[k] ? v : hi[k];
-        }
-    }
-    double extent = 0;
-    for (int k = 0; k < 3; ++k) extent = hi[k] - lo[k] > extent ? hi[k] - lo[k] : extent;
-    const uint32_t cells = 1u << HILBERT_BITS;
-    const double scale = extent > 0 ? cells / extent : 0.0;
+    const HilbertGrid grid(points, count);
 
     // Rounds: the last one takes each point with probability 1 - 1/ROUND_RATIO, the one before it each
     // remaining point with the same probability, and so on; the first takes the rest. The draw for a
@@ -100,12 +128,6 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& co
     Array<KeyedIndex> keyed(context.memory);
     if (!keyed.resize(count)) return context.fail_out_of_memory();
     for (uint32_t i = 0; i < count; ++i) {
-        const double* p = points + 3 * size_t(i);
-        uint32_t q[3];
-        for (int k = 0; k < 3; ++k) {
-            const double c = (p[k] - lo[k]) * scale;
-            q[k] = c >= cells - 1 ? cells - 1 : static_cast<uint32_t>(c);
-        }
         uint64_t state = SHUFFLE_SEED ^ (uint64_t(i) * 0xd1b54a32d192ed03ull);
         uint64_t draw = next_random(state);
         int earlier = 0;  // how many rounds before the last one
@@ -114,15 +136,23 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& co
             draw /= ROUND_RATIO;
         }
         const uint64_t round = uint64_t(rounds - 1 - earlier);
-        keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | hilbert_index(q[0], q[1], q[2], HILBERT_BITS), i};
+        keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | grid.key(points + 3 * size_t(i)), i};
     }
     DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.5));
-    // Ties (points in one grid cell) go by index, which keeps the order a function of the points.
-    std::sort(keyed.begin(), keyed.end(), [](const KeyedIndex& a, const KeyedIndex& b) {
-        return a.key != b.key ? a.key < b.key : a.index < b.index;
-    });
+    sort_keyed(keyed);
     for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
     return context.report(DBRG_STAGE_SORT, 1.0);
+}
+
+bool hilbert_order(const double* points, uint32_t count, Array<uint32_t>& order) {
+    Array<KeyedIndex> keyed(order.memory());
+    if (!order.resize(count) || !keyed.resize(count)) return false;
+    if (count == 0) return true;
+    const HilbertGrid grid(points, count);
+    for (uint32_t i = 0; i < count; ++i) keyed[i] = KeyedIndex{grid.key(points + 3 * size_t(i)), i};
+    sort_keyed(keyed);
+    for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
+    return true;
 }
 
 } // namespace dbrg

@@ -24,4 +24,8 @@ uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits);
 // DBRG_STAGE_SORT progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
 dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& context, Array<uint32_t>& order);
 
+// Fills `order` with the permutation of 0 .. count - 1 along a Hilbert curve over the points' bounding box,
+// ties by index. Returns false on allocation failure.
+bool hilbert_order(const double* points, uint32_t count, Array<uint32_t>& order);
+
 } // namespace dbrg

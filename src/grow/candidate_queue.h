@@ -7,15 +7,34 @@
 
 namespace dbrg {
 
+// The order in which the Delaunay triangles around a boundary edge are its candidates (§3.1.2): smallest
+// circumradius first. Circumradii of congruent triangles (a lattice, a cube's faces) differ only by rounding,
+// so they are compared at float precision, and equal ones go to the triangle that turns least from the
+// surface, then to the smaller apex id: a total order, and a function of the coordinates only.
+struct CandidateRank {
+    float radius;
+    double turn;         // cosine of the dihedral angle with the edge's face in S
+    uint32_t apex;
+};
+
+inline bool precedes(const CandidateRank& a, const CandidateRank& b) {
+    if (a.radius != b.radius) return a.radius < b.radius;
+    if (a.turn != b.turn) return a.turn > b.turn;
+    return a.apex < b.apex;
+}
+
 // The candidate triangle of one boundary half-edge u->v of S: the Delaunay triangle (v, u, apex).
 struct Candidate {
     double smoothness;   // local smooth degree LSD: mean cosine of the dihedral angles with its neighbours in S
     double radius;       // circumradius r(t)
+    double turn;         // cosine of its dihedral angle with the edge's face in S
     uint32_t halfedge;   // the boundary half-edge of S it attaches to
     uint32_t apex;       // its third vertex
     uint32_t tet;        // a Delaunay tetrahedron that has it as a face
     uint8_t version;     // the half-edge's version when the candidate was computed; older entries are stale
     uint8_t postponed;   // 1 once it has been set aside for a retry
+
+    CandidateRank rank() const { return CandidateRank{static_cast<float>(radius), turn, apex}; }
 };
 
 // Higher smoothness first, then the smaller circumradius, then vertex and half-edge ids, which depend only

@@ -49,8 +49,8 @@ dbrg_status RegionGrower::grow() {
         return context_.fail_out_of_memory();
     }
 
-    // Seeds are tried from the highest point down (§3.1.1); ties go to the lexicographically smaller point,
-    // which, as vertex ids are in lexicographic order, is the smaller id.
+    // Seeds are tried from the highest point down (§3.1.1); ties go to the smaller vertex id, which is a
+    // function of the coordinates (conditioning numbers the points along a Hilbert curve).
     Array<uint32_t> by_height(context_.memory);
     if (!by_height.resize(n)) return context_.fail_out_of_memory();
     for (uint32_t v = 0; v < n; ++v) by_height[v] = v;
@@ -180,14 +180,15 @@ dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
     case Verdict::pinch: break;
     }
     // The edge moves on to its next-best candidate (§3.2.2).
-    return propose(c.halfedge, c.radius, c.apex);
+    const CandidateRank rejected = c.rank();
+    return propose(c.halfedge, &rejected);
 }
 
 // ct(e) (§3.1.2): among the Delaunay triangles around the edge of `halfedge`, other than its face in S,
-// the one of smallest circumradius whose dihedral angle with that face is below theta_sliver. Only
-// triangles that come after (after_radius, after_apex) in (radius, apex) order count, so that a rejected
-// candidate hands over to the next best.
-bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint32_t after_apex, Candidate& out) const {
+// the first in candidate order (smallest circumradius) whose dihedral angle with that face is below
+// theta_sliver. With `after`, only triangles ranked after it count, so that a rejected candidate hands
+// over to the next best.
+bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const {
     const uint32_t face = Surface::face_of(halfedge);
     if (surface_.face_tet(face) == NO_TET) return false;  // a hole-filling face: no tetrahedron to walk from
     const uint32_t u = surface_.origin(halfedge), v = surface_.target(halfedge);
@@ -199,11 +200,13 @@ bool RegionGrower::select_candidate(uint32_t halfedge, double after_radius, uint
     delaunay_.for_each_triangle_around_edge(surface_.face_tet(face), u, v, [&](uint32_t apex, uint32_t tet) {
         if (apex == INFINITE_VERTEX || apex == opposite) return true;
         const double* pw = delaunay_.point(apex);
+        const double turn = dihedral_cosine(normal_b, triangle_normal(pv, pu, pw));
+        if (turn <= cos_sliver_) return true;
         const double r = circumradius(pu, pv, pw);
-        if (r < after_radius || (r == after_radius && apex <= after_apex)) return true;
-        if (found && (r > out.radius || (r == out.radius && apex > out.apex))) return true;
-        if (dihedral_cosine(normal_b, triangle_normal(pv, pu, pw)) <= cos_sliver_) return true;
+        const CandidateRank rank{static_cast<float>(r), turn, apex};
+        if ((after && !precedes(*after, rank)) || (found && !precedes(rank, out.rank()))) return true;
         out.radius = r;
+        out.turn = turn;
         out.apex = apex;
         out.tet = tet;
         found = true;
@@ -272,10 +275,10 @@ double RegionGrower::local_mean_radius(uint32_t halfedge) const {
 }
 
 // Computes the next candidate of a boundary half-edge and queues it; without one, the edge stays open.
-dbrg_status RegionGrower::propose(uint32_t halfedge, double after_radius, uint32_t after_apex) {
+dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after) {
     Candidate c;
     ++versions_[halfedge];
-    if (!select_candidate(halfedge, after_radius, after_apex, c)) return DBRG_OK;
+    if (!select_candidate(halfedge, after, c)) return DBRG_OK;
     examine(c, c.smoothness);
     c.version = versions_[halfedge];
     c.postponed = 0;
@@ -297,7 +300,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
         return context_.fail(DBRG_ERR_INTERNAL, "the surface failed its check after face %u was added", f);
     }
     for (uint32_t i = 0; i < 3; ++i) {
-        if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, -HUGE_VAL, 0));
+        if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, nullptr));
     }
     return DBRG_OK;
 }
@@ -306,7 +309,7 @@ dbrg_status RegionGrower::regrow_holes() {
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
     for (uint32_t h = 0; h < halfedges; ++h) {
-        if (surface_.is_boundary(h) && cause_[h] == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, -HUGE_VAL, 0));
+        if (surface_.is_boundary(h) && cause_[h] == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
     }
     DBRG_PROPAGATE(grow_component());
     DBRG_PROPAGATE(resolve_pinches());

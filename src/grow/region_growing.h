@@ -52,11 +52,11 @@ private:
     dbrg_status grow_component();
     dbrg_status drain_queue();
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
-    bool select_candidate(uint32_t halfedge, double after_radius, uint32_t after_apex, Candidate& out) const;
+    bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
     Verdict examine(const Candidate& candidate, double& smoothness) const;
     bool passes_boundary_test(const Candidate& candidate) const;
     double local_mean_radius(uint32_t halfedge) const;
-    dbrg_status propose(uint32_t halfedge, double after_radius, uint32_t after_apex);
+    dbrg_status propose(uint32_t halfedge, const CandidateRank* after);
     dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
     dbrg_status postpone(Candidate candidate);
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
