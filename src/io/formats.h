@@ -39,6 +39,25 @@ inline void append_unsigned(std::string& out, uint64_t value) {
     out.append(text, result.ptr);
 }
 
+// The body shared by OFF and ascii PLY: a line "x y z" per vertex, then a line "3 a b c" per triangle.
+inline void append_vertex_and_triangle_lines(std::string& out, const MeshData& mesh) {
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        for (size_t k = 0; k < 3; ++k) {
+            if (k > 0) out.push_back(' ');
+            append_double(out, mesh.positions[3 * v + k]);
+        }
+        out.push_back('\n');
+    }
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        out += "3";
+        for (size_t k = 0; k < 3; ++k) {
+            out.push_back(' ');
+            append_unsigned(out, mesh.triangles[3 * t + k]);
+        }
+        out.push_back('\n');
+    }
+}
+
 // Appends the triangles of a polygon fanned around its first corner.
 inline void append_fan(std::vector<uint32_t>& triangles, const uint32_t* corners, size_t count) {
     for (size_t i = 2; i < count; ++i) {

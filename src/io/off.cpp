@@ -116,21 +116,7 @@ void write_off(const MeshData& mesh, std::string& out) {
     out.push_back(' ');
     append_unsigned(out, mesh.triangle_count());
     out += " 0\n";
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-        for (size_t k = 0; k < 3; ++k) {
-            if (k > 0) out.push_back(' ');
-            append_double(out, mesh.positions[3 * v + k]);
-        }
-        out.push_back('\n');
-    }
-    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-        out += "3";
-        for (size_t k = 0; k < 3; ++k) {
-            out.push_back(' ');
-            append_unsigned(out, mesh.triangles[3 * t + k]);
-        }
-        out.push_back('\n');
-    }
+    append_vertex_and_triangle_lines(out, mesh);
 }
 
 } // namespace dbrg::io
