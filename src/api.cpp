@@ -31,7 +31,7 @@ dbrg_status read_params(const dbrg_params* given, dbrg_params& params, char* mes
     return DBRG_OK;
 }
 
-// Allocates a result object of type T from the caller's allocator; T's first member is its Memory.
+// Allocates a result object of type T (a ResultBase) from the caller's allocator.
 template <class T>
 T* create_result(const dbrg_params& params) {
     Memory bootstrap(params.allocator);
@@ -47,43 +47,52 @@ void destroy_result(T* result) {
     bootstrap.release(result, sizeof(T));
 }
 
+// Starts a call that hands back a result object: reads the parameters and creates the object, which
+// carries the parameter problem if there is one. NULL when the object itself cannot be allocated.
+template <class Result>
+Result* open_result(const dbrg_params* given, dbrg_params& params) {
+    char message[256];
+    const dbrg_status status = read_params(given, params, message, sizeof message);
+    if (status != DBRG_OK) fill_default_params(params);  // bad params may carry a bad allocator
+    Result* result = create_result<Result>(params);
+    if (result && status != DBRG_OK) result->record(status, message);
+    return result;
+}
+
 } // namespace
 
-// Result objects hold their arrays in a Memory built on the caller's allocator, so they outlive the call.
-struct dbrg_mesh {
-    explicit dbrg_mesh(const dbrg_allocator* allocator)
-        : allocator_copy(allocator ? *allocator : dbrg_allocator{}),
-          allocator_copy_valid(allocator != nullptr),
-          memory(allocator),
-          surface(memory) {
-        memset(&stats, 0, sizeof stats);
-        stats.struct_size = sizeof stats;
+// Result objects hold their arrays in a Memory built on the caller's allocator, so they outlive the call,
+// and the status and message of the call that made them.
+struct ResultBase {
+    explicit ResultBase(const dbrg_allocator* allocator)
+        : allocator_copy(allocator ? *allocator : dbrg_allocator{}), allocator_copy_valid(allocator != nullptr),
+          memory(allocator) {
         message[0] = '\0';
+    }
+    void record(dbrg_status outcome, const char* text) {
+        status = outcome;
+        snprintf(message, sizeof message, "%s", text);
     }
     dbrg_allocator allocator_copy;
     bool allocator_copy_valid;
     Memory memory;
-    SurfaceResult surface;
     dbrg_status status = DBRG_OK;
-    uint32_t point_count = 0;
-    dbrg_stats stats;
     char message[256];
 };
 
-struct dbrg_tetrahedralization {
-    explicit dbrg_tetrahedralization(const dbrg_allocator* allocator)
-        : allocator_copy(allocator ? *allocator : dbrg_allocator{}),
-          allocator_copy_valid(allocator != nullptr),
-          memory(allocator),
-          result(memory) {
-        message[0] = '\0';
+struct dbrg_mesh : ResultBase {
+    explicit dbrg_mesh(const dbrg_allocator* allocator) : ResultBase(allocator), surface(memory) {
+        memset(&stats, 0, sizeof stats);
+        stats.struct_size = sizeof stats;
     }
-    dbrg_allocator allocator_copy;
-    bool allocator_copy_valid;
-    Memory memory;
+    SurfaceResult surface;
+    uint32_t point_count = 0;
+    dbrg_stats stats;
+};
+
+struct dbrg_tetrahedralization : ResultBase {
+    explicit dbrg_tetrahedralization(const dbrg_allocator* allocator) : ResultBase(allocator), result(memory) {}
     TetrahedraResult result;
-    dbrg_status status = DBRG_OK;
-    char message[256];
 };
 
 extern "C" {
@@ -157,27 +166,16 @@ DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_
 
 DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_params* given, dbrg_mesh** out_mesh) {
     if (!out_mesh) return DBRG_ERR_INVALID_ARGUMENT;
-    *out_mesh = nullptr;
     dbrg_params params;
-    char message[256];
-    const dbrg_status params_status = read_params(given, params, message, sizeof message);
-    // Invalid params may carry a bad allocator: report with the system allocator.
-    if (params_status != DBRG_OK) fill_default_params(params);
-    dbrg_mesh* mesh = create_result<dbrg_mesh>(params);
+    dbrg_mesh* mesh = *out_mesh = open_result<dbrg_mesh>(given, params);
     if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
-    *out_mesh = mesh;
-    if (params_status != DBRG_OK) {
-        mesh->status = params_status;
-        snprintf(mesh->message, sizeof mesh->message, "%s", message);
-        return params_status;
-    }
+    if (mesh->status != DBRG_OK) return mesh->status;
     Context context(params);
     const double start = seconds_now();
-    dbrg_status status = reconstruct_surface(points, context, mesh->surface);
+    const dbrg_status status = reconstruct_surface(points, context, mesh->surface);
     if (status != DBRG_OK) mesh->surface = SurfaceResult(mesh->memory);
-    mesh->status = status;
-    snprintf(mesh->message, sizeof mesh->message, "%s", status == DBRG_OK ? "" : context.message());
-    mesh->point_count = points && status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
+    mesh->record(status, status == DBRG_OK ? "" : context.message());
+    mesh->point_count = status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
     mesh->stats = context.stats;
     mesh->stats.seconds_total = seconds_now() - start;
     mesh->stats.peak_bytes = context.memory.peak_bytes() + mesh->memory.bytes_in_use();
@@ -223,24 +221,14 @@ DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats) {
 DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_params* given,
                                          dbrg_tetrahedralization** out) {
     if (!out) return DBRG_ERR_INVALID_ARGUMENT;
-    *out = nullptr;
     dbrg_params params;
-    char message[256];
-    const dbrg_status params_status = read_params(given, params, message, sizeof message);
-    if (params_status != DBRG_OK) fill_default_params(params);
-    dbrg_tetrahedralization* tets = create_result<dbrg_tetrahedralization>(params);
+    dbrg_tetrahedralization* tets = *out = open_result<dbrg_tetrahedralization>(given, params);
     if (!tets) return DBRG_ERR_OUT_OF_MEMORY;
-    *out = tets;
-    if (params_status != DBRG_OK) {
-        tets->status = params_status;
-        snprintf(tets->message, sizeof tets->message, "%s", message);
-        return params_status;
-    }
+    if (tets->status != DBRG_OK) return tets->status;
     Context context(params);
     const dbrg_status status = tetrahedralize_points(points, context, tets->result);
     if (status != DBRG_OK) tets->result = TetrahedraResult(tets->memory);
-    tets->status = status;
-    snprintf(tets->message, sizeof tets->message, "%s", status == DBRG_OK ? "" : context.message());
+    tets->record(status, status == DBRG_OK ? "" : context.message());
     return status;
 }
 
