@@ -106,7 +106,7 @@ bool RegionGrower::find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet
     }
     if (best == HUGE_VAL) return false;
     const double factor = context_.params.boundary_factor;
-    if (factor > 0 && surface_.face_count() > 0 && best > factor * radius_sum_ / surface_.face_count()) return false;
+    if (factor > 0 && surface_.live_face_count() > 0 && best > factor * radius_sum_ / surface_.live_face_count()) return false;
     orient_upward(delaunay_, corners);
     return true;
 }
@@ -252,7 +252,7 @@ bool RegionGrower::passes_boundary_test(const Candidate& c) const {
     const double factor = context_.params.boundary_factor;
     if (factor == 0) return true;
     const double mean = context_.params.boundary_mean == DBRG_BOUNDARY_MEAN_GLOBAL
-                            ? radius_sum_ / surface_.face_count()
+                            ? radius_sum_ / surface_.live_face_count()
                             : local_mean_radius(c.halfedge);
     return c.radius <= factor * mean;
 }
