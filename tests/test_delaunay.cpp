@@ -156,6 +156,20 @@ TEST_CASE("two points one ulp apart") {
     check_valid(xyz, 504);
 }
 
+TEST_CASE("points spanning a thousand binary orders of magnitude") {
+    // Tiny coordinates beside unit ones once made the exact predicates underflow (a walk that never ended,
+    // a broken cavity); conditioning rounds them onto the predicates' 2^-200 grid.
+    for (uint64_t seed = 1; seed <= 10; ++seed) {
+        Random r(seed);
+        std::vector<double> xyz = random_cube(200, seed);
+        for (int i = 0; i < 50; ++i) {
+            const double scale = ldexp(1.0, -static_cast<int>(r.next() % 1000));
+            xyz.insert(xyz.end(), {scale * (r.uniform() - 0.5), scale * (r.uniform() - 0.5), scale * (r.uniform() - 0.5)});
+        }
+        check_valid(xyz);
+    }
+}
+
 TEST_CASE("scaled copies give the same tetrahedra") {
     const std::vector<double> base = random_cube(2000, 9);
     Built unit(base);

@@ -38,6 +38,14 @@ double exact_origin(const double* xyz, size_t count, int axis, double minimum, i
     return origin;
 }
 
+// The exact predicates need every coordinate to be a multiple of 2^-200 (so no product of differences
+// underflows): rounding to that grid moves a point by at most 2^-201 of the cloud's extent, which merges
+// only points that no double-precision computation on the whole cloud could tell apart anyway.
+double snap_to_predicate_grid(double x) {
+    const int grid_exponent = 200;
+    return ldexp(nearbyint(ldexp(x, grid_exponent)), -grid_exponent);
+}
+
 struct IndexedPoint {
     double p[3];
     uint32_t index;
@@ -117,7 +125,7 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     if (!sorted.resize(count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) {
         IndexedPoint& q = sorted[i];
-        for (int k = 0; k < 3; ++k) q.p[k] = ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent);
+        for (int k = 0; k < 3; ++k) q.p[k] = snap_to_predicate_grid(ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent));
         q.index = static_cast<uint32_t>(i);
     }
     std::sort(sorted.begin(), sorted.end(), [](const IndexedPoint& a, const IndexedPoint& b) {

@@ -14,9 +14,10 @@ struct ConditionedPoints {
     explicit ConditionedPoints(Memory& memory) : coordinates(memory), input_index(memory) {}
 
     // x, y, z of each distinct point, translated by `origin` and scaled by 2^scale_exponent so the
-    // largest extent lies in [0.5, 1). Sorted lexicographically by (x, y, z): vertex ids therefore
-    // depend on the coordinates only, never on the caller's order. The transform is exact (barring
-    // underflow below 2^-1022 after scaling), so distinct input points stay distinct.
+    // largest extent lies in [0.5, 1), then rounded to a multiple of 2^-200 as the exact predicates
+    // require. Sorted lexicographically by (x, y, z): vertex ids therefore depend on the coordinates only,
+    // never on the caller's order. The translation and scaling are exact; the rounding moves a point by
+    // at most 2^-201 of the extent, so only points closer than that to each other are merged.
     Array<double> coordinates;
     // For each distinct point, the smallest caller index among the input points merged into it.
     Array<uint32_t> input_index;
