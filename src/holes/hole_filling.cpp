@@ -163,17 +163,22 @@ dbrg_status HoleFiller::clip_ears(Array<uint32_t>& corners, Journal& journal, bo
     while (corners.size() >= 3) {
         const size_t n = corners.size();
         size_t best = n;
-        double best_radius = HUGE_VAL;
-        for (size_t i = 0; i < n; ++i) {
-            const uint32_t previous = corners[(i + n - 1) % n], apex = corners[i], next = corners[(i + 1) % n];
-            const Vec3 a = load_vec3(delaunay_.point(previous)), p = load_vec3(delaunay_.point(apex)),
-                       b = load_vec3(delaunay_.point(next));
-            if (n > 3 && dot(vertex_normal(apex), cross(p - a, b - p)) >= 0) continue;  // convex: no ear here
-            const double r = circumradius(delaunay_.point(previous), delaunay_.point(apex), delaunay_.point(next));
-            if (r < best_radius && ear_is_valid(apex, previous, next, n == 3)) {
-                best = i;
-                best_radius = r;
+        // Concave corners first; where none has a valid ear (averaged normals on a sharp or badly sampled
+        // rim can call every corner convex), any corner.
+        for (const bool concave_only : {true, false}) {
+            double best_radius = HUGE_VAL;
+            for (size_t i = 0; i < n; ++i) {
+                const uint32_t previous = corners[(i + n - 1) % n], apex = corners[i], next = corners[(i + 1) % n];
+                const Vec3 a = load_vec3(delaunay_.point(previous)), p = load_vec3(delaunay_.point(apex)),
+                           b = load_vec3(delaunay_.point(next));
+                if (concave_only && n > 3 && dot(vertex_normal(apex), cross(p - a, b - p)) >= 0) continue;
+                const double r = circumradius(delaunay_.point(previous), delaunay_.point(apex), delaunay_.point(next));
+                if (r < best_radius && ear_is_valid(apex, previous, next, n == 3)) {
+                    best = i;
+                    best_radius = r;
+                }
             }
+            if (best != n) break;
         }
         if (best == n) return DBRG_OK;
         const uint32_t apex = corners[best];
