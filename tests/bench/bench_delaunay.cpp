@@ -4,7 +4,7 @@
 // Each engine runs in a child process of its own, so that its peak resident memory is its own. Times are
 // processor seconds of that process.
 // Usage: dbrg-bench-delaunay [--quick] [--markdown] [--no-fork] [--data DIR] [--only NAME] [--repeat N]
-//                            [--engines dbrg,tetgen,cgal]
+//                            [--size N] [--engines dbrg,tetgen,cgal]
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -228,6 +228,7 @@ void load_meshes(const std::string& dir, std::vector<Dataset>& out) {
 int main(int argc, char** argv) {
     bool quick = false, markdown = false, fork_children = true;
     int repeat = 1;
+    size_t size = 0;  // --size: the point count of the generated large sets instead of 1M (100k with --quick)
     std::string data_dir;
 #ifdef DBRG_SHARED_DATA_DIR
     data_dir = DBRG_SHARED_DATA_DIR;
@@ -241,14 +242,15 @@ int main(int argc, char** argv) {
         else if (!strcmp(argv[i], "--data") && i + 1 < argc) data_dir = argv[++i];
         else if (!strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--size") && i + 1 < argc) size = strtoull(argv[++i], nullptr, 10);
         else if (!strcmp(argv[i], "--engines") && i + 1 < argc) engine_filter = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--quick] [--markdown] [--no-fork] [--data DIR] [--only NAME] [--repeat N] [--engines dbrg,tetgen,cgal]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick] [--markdown] [--no-fork] [--data DIR] [--only NAME] [--repeat N] [--size N] [--engines dbrg,tetgen,cgal]\n", argv[0]);
             return 2;
         }
     }
     std::vector<Dataset> sets;
-    const size_t big = quick ? 100000 : 1000000;
+    const size_t big = size ? size : quick ? 100000 : 1000000;
     sets.push_back(uniform_cube(100000));
     if (!quick) sets.push_back(uniform_cube(big));
     sets.push_back(torus(big));
