@@ -267,7 +267,7 @@ typedef struct dbrg_stats {
     uint32_t vertices_used;          /* distinct points the result's triangles use */
     uint32_t boundary_edges;         /* edges of the result with one triangle */
     uint32_t boundary_loops;
-    uint32_t components;             /* surfaces grown from separate seeds */
+    uint32_t components;             /* connected components of the result (each grown from its own seed) */
     uint32_t pinch_faces_removed;    /* faces removed where two sheets still met at a vertex when growing ended,
                                         with the islands of fewer than 16 faces that this cut off */
 
