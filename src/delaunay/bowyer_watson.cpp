@@ -123,6 +123,16 @@ int insphere_filtered(const double* a, const double* b, const double* c, const d
     return certain_sign(det, INSPHERE_PERMANENT_BOUND * permanent + UNDERFLOW_GUARD);
 }
 
+// A hint to the processor that `address` is needed soon. The tetrahedron store is far larger than the
+// caches, and the cavity search otherwise waits for each neighbour's record in turn.
+inline void prefetch(const void* address) {
+#if defined(__GNUC__)
+    __builtin_prefetch(address);
+#else
+    (void)address;
+#endif
+}
+
 uint32_t hash_edge(uint64_t edge) {
     const uint64_t h = edge * 0x9e3779b97f4a7c15ull;
     return static_cast<uint32_t>(h >> 40);
@@ -350,13 +360,22 @@ dbrg_status DelaunayBuilder::insert(uint32_t v) {
     boundary_.clear();
     vertex_[4 * size_t(first)] |= IN_CAVITY_BIT;
     if (!cavity_.push_back(first)) return context_.fail_out_of_memory();
+    // The four neighbours' records are requested together before any is tested; a cavity member's
+    // adjacency, and an outside neighbour's (written when the new tetrahedra are glued on), as soon as
+    // the tetrahedron is classified.
     for (size_t i = 0; i < cavity_.size(); ++i) {
         const uint32_t c = cavity_[i];
+        uint32_t neighbours[4];
         for (uint32_t lf = 0; lf < 4; ++lf) {
-            const uint32_t n = adjacency_[4 * size_t(c) + lf] >> 2;
+            neighbours[lf] = adjacency_[4 * size_t(c) + lf] >> 2;
+            prefetch(vertex_ + 4 * size_t(neighbours[lf]));
+        }
+        for (uint32_t lf = 0; lf < 4; ++lf) {
+            const uint32_t n = neighbours[lf];
             uint32_t* nv = vertex_ + 4 * size_t(n);
             if (nv[0] & IN_CAVITY_BIT) continue;
             if (!(nv[1] & OUTSIDE_BIT)) {
+                prefetch(adjacency_ + 4 * size_t(n));
                 if (in_conflict(nv, p)) {
                     nv[0] |= IN_CAVITY_BIT;
                     if (!cavity_.push_back(n)) return context_.fail_out_of_memory();
