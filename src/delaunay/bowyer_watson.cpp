@@ -147,18 +147,18 @@ public:
           boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
           used_edges_(memory_) {}
 
-    // Inserts points 0 .. count - 1 of `points` in that order (the four first affinely independent
-    // ones first).
-    dbrg_status run(const double* points, uint32_t count);
+    // Inserts points order[0], ..., order[count - 1] of `points` in that order (the four first affinely
+    // independent ones first). Vertex ids are indices into `points`.
+    dbrg_status run(const double* points, const uint32_t* order, uint32_t count);
 
 private:
     dbrg_status start(uint32_t n, uint32_t& c, uint32_t& d);
-    dbrg_status insert(uint32_t v);
+    dbrg_status insert(uint32_t rank);
     dbrg_status locate(const double* p, uint32_t& found);
     bool in_conflict(const uint32_t* tet, const double* p);
     dbrg_status take_slot(uint32_t& slot);
     dbrg_status link_new_tets();
-    void choose_hint(uint32_t v);
+    void choose_hint(uint32_t rank);
     void refresh_pointers() {
         vertex_ = out_.vertices_.data();
         adjacency_ = out_.adjacency_.data();
@@ -179,7 +179,8 @@ private:
     uint32_t* vertex_ = nullptr;     // out_.vertices_.data(), refreshed whenever the store grows
     uint32_t* adjacency_ = nullptr;  // out_.adjacency_.data()
     uint32_t free_head_ = NO_TET;    // free slots, chained through adjacency entry 0
-    uint32_t count_ = 0;             // points to insert
+    const uint32_t* order_ = nullptr;  // the insertion order: the vertex id of each rank
+    uint32_t count_ = 0;               // points to insert
     uint32_t hint_ = 0;              // a tetrahedron made by the last insertion: the next walk starts there
     uint64_t random_ = WALK_SEED;
 
@@ -295,18 +296,20 @@ dbrg_status DelaunayBuilder::start(uint32_t n, uint32_t& c, uint32_t& d) {
     // The first four affinely independent points of the order: the first two, the next one off their
     // line, the next one off their plane.
     c = 2;
-    while (c < n && points_collinear(point(0), point(1), point(c), counters)) ++c;
+    const double* p0 = point(order_[0]);
+    const double* p1 = point(order_[1]);
+    while (c < n && points_collinear(p0, p1, point(order_[c]), counters)) ++c;
     d = 2;
     if (c < n) {
-        while (d < n && (d == c || orient3d(point(0), point(1), point(c), point(d), counters) == 0)) ++d;
+        while (d < n && (d == c || orient3d(p0, p1, point(order_[c]), point(order_[d]), counters) == 0)) ++d;
     }
     if (c >= n || d >= n) {
         return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are %s", n, c >= n ? "collinear" : "coplanar");
     }
-    uint32_t v[4] = {0, 1, c, d};
+    uint32_t v[4] = {order_[0], order_[1], order_[c], order_[d]};
     if (orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3]), counters) < 0) {
-        v[0] = 1;
-        v[1] = 0;
+        v[0] = order_[1];
+        v[1] = order_[0];
     }
     const size_t reserve_slots = static_cast<size_t>(EXPECTED_TETS_PER_POINT * n) + 64;
     if (!out_.vertices_.reserve(4 * reserve_slots) || !out_.adjacency_.reserve(4 * reserve_slots) ||
@@ -349,7 +352,8 @@ dbrg_status DelaunayBuilder::start(uint32_t n, uint32_t& c, uint32_t& d) {
     return DBRG_OK;
 }
 
-dbrg_status DelaunayBuilder::insert(uint32_t v) {
+dbrg_status DelaunayBuilder::insert(uint32_t rank) {
+    const uint32_t v = order_[rank];
     const double* p = point(v);
     uint32_t first;
     DBRG_PROPAGATE(locate(p, first));
@@ -428,18 +432,18 @@ dbrg_status DelaunayBuilder::insert(uint32_t v) {
         adjacency_[4 * size_t(made.outer >> 2) + (made.outer & 3)] = s << 2 | made.face;
         finite_added += made.vertex[3] != INFINITE_VERTEX;
     }
-    choose_hint(v);
+    choose_hint(rank);
     out_.finite_tets_ += finite_added - finite_removed;
     for (size_t i = 0; i < outside_.size(); ++i) vertex_[4 * size_t(outside_[i]) + 1] &= VERTEX_ID_MASK;
     return link_new_tets();
 }
 
-void DelaunayBuilder::choose_hint(uint32_t v) {
+void DelaunayBuilder::choose_hint(uint32_t rank) {
     // Any start is correct, but on surface samples the tetrahedra around v are long needles, and a walk
-    // from an arbitrary one of them wanders; the one whose centroid is nearest to the next point (v + 1
-    // in insertion order) cuts the walk to a fraction. Plain floating point: only speed depends on it.
-    if (v + 1 >= count_) return;
-    const double* q = point(v + 1);
+    // from an arbitrary one of them wanders; the one whose centroid is nearest to the next point in
+    // insertion order cuts the walk to a fraction. Plain floating point: only speed depends on it.
+    if (rank + 1 >= count_) return;
+    const double* q = point(order_[rank + 1]);
     double best = HUGE_VAL;
     for (size_t i = 0; i < new_tets_.size(); ++i) {
         const NewTet& made = new_tets_[i];
@@ -510,8 +514,9 @@ dbrg_status DelaunayBuilder::link_new_tets() {
     return DBRG_OK;
 }
 
-dbrg_status DelaunayBuilder::run(const double* points, uint32_t n) {
+dbrg_status DelaunayBuilder::run(const double* points, const uint32_t* order, uint32_t n) {
     points_ = points;
+    order_ = order;
     count_ = n;
     uint32_t c, d;
     DBRG_PROPAGATE(start(n, c, d));
@@ -538,34 +543,13 @@ dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Cont
     const double sort_start = seconds_now();
     Array<uint32_t> order(context.memory);
     dbrg_status status = brio_hilbert_order(points, count, context, order);
-    // The engine works on a copy of the points in insertion order, numbered by insertion rank: points
-    // that are close in space are then close in memory, which the walk and the sphere tests feel.
-    Array<double> ranked(context.memory);
-    if (status == DBRG_OK && !ranked.resize(3 * size_t(count))) status = context.fail_out_of_memory();
-    if (status == DBRG_OK) {
-        for (uint32_t i = 0; i < count; ++i) {
-            const double* p = points + 3 * size_t(order[i]);
-            ranked[3 * size_t(i)] = p[0];
-            ranked[3 * size_t(i) + 1] = p[1];
-            ranked[3 * size_t(i) + 2] = p[2];
-        }
-    }
+    // The engine reads the caller's points in place, with the caller's vertex ids: the pipeline numbers
+    // them along a Hilbert curve (renumber_spatially), so points close in space are already close in
+    // memory, and a copy in insertion order would cost 24 bytes per point at the peak.
     const double insert_start = seconds_now();
     if (status == DBRG_OK) {
         DelaunayBuilder builder(*this, context);
-        status = builder.run(ranked.data(), count);
-    }
-    ranked.release();
-    if (status == DBRG_OK) {
-        // Back to the caller's vertex ids.
-        const uint32_t slots = tet_slots();
-        for (uint32_t t = 0; t < slots; ++t) {
-            if (tet_is_free(t)) continue;
-            uint32_t* tv = vertices_.data() + 4 * size_t(t);
-            for (uint32_t lv = 0; lv < 4; ++lv) {
-                if (tv[lv] != INFINITE_VERTEX) tv[lv] = order[tv[lv]];
-            }
-        }
+        status = builder.run(points, order.data(), count);
     }
     order.release();
     if (status == DBRG_OK) {
