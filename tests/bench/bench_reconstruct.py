@@ -105,8 +105,8 @@ def main():
     parser.add_argument("--large", action="store_true", help="also 1M and 2M-point samples")
     parser.add_argument("--holes", action="store_true", help="boundaries before and after hole filling")
     parser.add_argument("--cgal", action="store_true",
-                        help="compare with CGAL's advancing front (tests/bench/cgal-advancing-front, built when "
-                             "libcgal-dev is installed)")
+                        help="compare with CGAL's advancing front (build tests/bench/cgal-advancing-front first; "
+                             "needs libcgal-dev)")
     args = parser.parse_args()
 
     inputs = []
@@ -132,7 +132,8 @@ def main():
         cgal = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(args.dbrg)))),
                             "tests", "bench", "cgal-advancing-front")
         if not os.path.exists(cgal):
-            sys.exit(f"no {cgal}: install libcgal-dev and reconfigure")
+            sys.exit(f"no {cgal}: install libcgal-dev, reconfigure, and build it: "
+                     f"ninja -C build tests/bench/cgal-advancing-front")
         with tempfile.TemporaryDirectory() as workdir:
             compare_with_cgal(args.dbrg, cgal, inputs, workdir)
         return
