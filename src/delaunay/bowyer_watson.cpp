@@ -364,18 +364,18 @@ dbrg_status DelaunayBuilder::insert(uint32_t rank) {
     boundary_.clear();
     vertex_[4 * size_t(first)] |= IN_CAVITY_BIT;
     if (!cavity_.push_back(first)) return context_.fail_out_of_memory();
-    // The four neighbours' records are requested together before any is tested; a cavity member's
-    // adjacency, and an outside neighbour's (written when the new tetrahedra are glued on), as soon as
-    // the tetrahedron is classified.
+    // Memory latency, not arithmetic, bounds this loop: the neighbours' records are requested one
+    // cavity member ahead of their tests, a member's adjacency as soon as it joins, and an outside
+    // neighbour's adjacency (written when the new tetrahedra are glued on) as soon as it is reached.
+    size_t requested = 0;  // cavity members whose neighbours' records have been requested
     for (size_t i = 0; i < cavity_.size(); ++i) {
-        const uint32_t c = cavity_[i];
-        uint32_t neighbours[4];
-        for (uint32_t lf = 0; lf < 4; ++lf) {
-            neighbours[lf] = adjacency_[4 * size_t(c) + lf] >> 2;
-            prefetch(vertex_ + 4 * size_t(neighbours[lf]));
+        for (; requested < cavity_.size() && requested <= i + 1; ++requested) {
+            const uint32_t* adjacent = adjacency_ + 4 * size_t(cavity_[requested]);
+            for (uint32_t lf = 0; lf < 4; ++lf) prefetch(vertex_ + 4 * size_t(adjacent[lf] >> 2));
         }
+        const uint32_t c = cavity_[i];
         for (uint32_t lf = 0; lf < 4; ++lf) {
-            const uint32_t n = neighbours[lf];
+            const uint32_t n = adjacency_[4 * size_t(c) + lf] >> 2;
             uint32_t* nv = vertex_ + 4 * size_t(n);
             if (nv[0] & IN_CAVITY_BIT) continue;
             if (!(nv[1] & OUTSIDE_BIT)) {
