@@ -4,6 +4,7 @@
 
 #include <new>
 
+#include "core/c_enum.h"
 #include "core/params.h"
 #include "core/point_input.h"
 #include "delaunay/point_conditioning.h"
@@ -102,7 +103,7 @@ DBRG_API uint32_t dbrg_version_number(void) { return DBRG_VERSION_NUMBER; }
 DBRG_API const char* dbrg_version_string(void) { return DBRG_VERSION_STRING; }
 
 DBRG_API const char* dbrg_status_string(dbrg_status status) {
-    switch (status) {
+    switch (c_enum_value(status)) {
     case DBRG_OK: return "DBRG_OK";
     case DBRG_ERR_INVALID_ARGUMENT: return "DBRG_ERR_INVALID_ARGUMENT";
     case DBRG_ERR_INVALID_PARAMETER: return "DBRG_ERR_INVALID_PARAMETER";

@@ -4,6 +4,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/c_enum.h"
+
 namespace dbrg {
 namespace {
 
@@ -31,12 +33,14 @@ const char* find_parameter_problem(const dbrg_params& params) {
     if (!(params.boundary_factor == 0 || (params.boundary_factor > 1 && isfinite(params.boundary_factor)))) {
         return "boundary_factor must be 0 (off) or a finite number greater than 1";
     }
-    if (params.boundary_mean != DBRG_BOUNDARY_MEAN_LOCAL && params.boundary_mean != DBRG_BOUNDARY_MEAN_GLOBAL) {
+    const int mean = c_enum_value(params.boundary_mean);
+    if (mean != DBRG_BOUNDARY_MEAN_LOCAL && mean != DBRG_BOUNDARY_MEAN_GLOBAL) {
         return "boundary_mean must be DBRG_BOUNDARY_MEAN_LOCAL or DBRG_BOUNDARY_MEAN_GLOBAL";
     }
     if (params.max_hole_edges < 3) return "max_hole_edges must be at least 3";
     if (params.max_components < 1) return "max_components must be at least 1";
-    if (params.backend != DBRG_BACKEND_BUILTIN && params.backend != DBRG_BACKEND_TETGEN) {
+    const int backend = c_enum_value(params.backend);
+    if (backend != DBRG_BACKEND_BUILTIN && backend != DBRG_BACKEND_TETGEN) {
         return "backend must be DBRG_BACKEND_BUILTIN or DBRG_BACKEND_TETGEN";
     }
     const bool allocator_complete = !params.allocator || (params.allocator->allocate && params.allocator->reallocate &&

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/c_enum.h"
 #include "core/status.h"
 
 namespace dbrg {
@@ -30,9 +31,9 @@ dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride,
 
 dbrg_status read_points(const dbrg_points* points, Context& context, Array<double>& xyz) {
     if (!points) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points is NULL");
-    if (points->type != DBRG_FLOAT32 && points->type != DBRG_FLOAT64) {
-        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->type is %d; expected DBRG_FLOAT32 or DBRG_FLOAT64",
-                            static_cast<int>(points->type));
+    const int type = c_enum_value(points->type);
+    if (type != DBRG_FLOAT32 && type != DBRG_FLOAT64) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->type is %d; expected DBRG_FLOAT32 or DBRG_FLOAT64", type);
     }
     const size_t scalar_size = points->type == DBRG_FLOAT32 ? sizeof(float) : sizeof(double);
     if (points->stride_bytes < 3 * scalar_size) {
