@@ -1,0 +1,197 @@
+// The caller's allocator and progress callback when things go wrong: refusing any one allocation of
+// dbrg_reconstruct or dbrg_tetrahedralize, or every allocation from some point on, gives
+// DBRG_ERR_OUT_OF_MEMORY; cancelling at any progress report gives DBRG_ERR_CANCELLED; either way nothing
+// leaks and every block comes back with its size. Point counts beyond the limits fail before anything is
+// allocated or read.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "dbrg/dbrg.h"
+#include "delaunay_test_support.h"
+#include "samples/samples.h"
+#include "support/counting_allocator.h"
+
+using namespace dbrg;
+
+namespace {
+
+struct Input {
+    std::string name;
+    std::vector<double> xyz;
+};
+
+// A few hundred points each: sample shapes (hole filling runs on the open one), degenerate sets the
+// library accepts, and sets it rejects after allocating.
+std::vector<Input> inputs() {
+    std::vector<Input> out;
+    out.push_back({"sphere", samples::sample(samples::Shape::sphere, 200)});
+    out.push_back({"torus", samples::sample(samples::Shape::torus, 250)});
+    out.push_back({"hemisphere", samples::sample(samples::Shape::hemisphere, 150)});
+    out.push_back({"cube", samples::sample(samples::Shape::cube, 200)});
+    out.push_back({"lattice 5x5x5", dbrg_test::lattice(5, 0.0, 0)});
+    out.push_back({"lattice cube surface 6", dbrg_test::cube_surface_lattice(6)});
+    std::vector<double> duplicated = samples::sample(samples::Shape::sphere, 150);
+    duplicated.insert(duplicated.end(), duplicated.begin(), duplicated.begin() + 150);
+    out.push_back({"sphere with duplicates", duplicated});
+    std::vector<double> plane;
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 12; ++j) plane.insert(plane.end(), {double(i), double(j), 0.5 * i - 0.25 * j});
+    out.push_back({"coplanar (rejected)", plane});
+    std::vector<double> three(samples::sample(samples::Shape::sphere, 3));
+    for (int copy = 0; copy < 5; ++copy) three.insert(three.end(), three.begin(), three.begin() + 9);
+    out.push_back({"three distinct points (rejected)", three});
+    return out;
+}
+
+// One call of an entry point, its status and what the result says.
+struct Call {
+    dbrg_status status;
+    bool has_result;
+    uint32_t elements;  // triangles or tetrahedra
+};
+
+enum class EntryPoint { reconstruct, tetrahedralize };
+
+Call call(EntryPoint entry, const std::vector<double>& xyz, const dbrg_params& params) {
+    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    if (entry == EntryPoint::reconstruct) {
+        dbrg_mesh* mesh = nullptr;
+        const dbrg_status status = dbrg_reconstruct(&points, &params, &mesh);
+        const Call result{status, mesh != nullptr, dbrg_mesh_triangle_count(mesh)};
+        if (mesh) CHECK(dbrg_mesh_status(mesh) == status);
+        dbrg_mesh_destroy(mesh);
+        return result;
+    }
+    dbrg_tetrahedralization* tets = nullptr;
+    const dbrg_status status = dbrg_tetrahedralize(&points, &params, &tets);
+    const Call result{status, tets != nullptr, dbrg_tetrahedralization_tet_count(tets)};
+    if (tets) CHECK(dbrg_tetrahedralization_status(tets) == status);
+    dbrg_tetrahedralization_destroy(tets);
+    return result;
+}
+
+std::string entry_name(EntryPoint entry) { return entry == EntryPoint::reconstruct ? "dbrg_reconstruct" : "dbrg_tetrahedralize"; }
+
+void require_nothing_held(const test::CountingAllocator& allocator) {
+    REQUIRE(allocator.live_blocks() == 0);
+    REQUIRE(allocator.live_bytes() == 0);
+    REQUIRE(allocator.contract_violations() == 0);
+}
+
+// Cancels at the chosen report and checks that no report follows.
+struct Canceller {
+    uint64_t calls = 0;
+    uint64_t cancel_at = 0;  // 0: never
+    uint64_t calls_after_cancel = 0;
+
+    static int report(void* user, dbrg_stage, double) {
+        Canceller& self = *static_cast<Canceller*>(user);
+        if (self.cancel_at != 0 && self.calls >= self.cancel_at) ++self.calls_after_cancel;
+        ++self.calls;
+        return self.calls == self.cancel_at ? 1 : 0;
+    }
+};
+
+const EntryPoint ENTRY_POINTS[] = {EntryPoint::reconstruct, EntryPoint::tetrahedralize};
+
+} // namespace
+
+TEST_CASE("refusing any one allocation, or all from one on, gives OUT_OF_MEMORY and leaks nothing") {
+    for (const Input& input : inputs()) {
+        for (EntryPoint entry : ENTRY_POINTS) {
+            CAPTURE(input.name);
+            CAPTURE(entry_name(entry));
+            test::CountingAllocator allocator;
+            dbrg_params params;
+            dbrg_params_init(&params);
+            params.allocator = allocator.get();
+            const Call full = call(entry, input.xyz, params);
+            require_nothing_held(allocator);
+            const uint64_t requests = allocator.requests();
+            REQUIRE(requests > 2);
+            MESSAGE(input.name << ", " << entry_name(entry) << ": " << std::string(dbrg_status_string(full.status)) << " after "
+                               << requests << " allocation requests");
+            for (bool persistent : {false, true}) {
+                for (uint64_t k = 1; k <= requests; ++k) {
+                    CAPTURE(persistent);
+                    CAPTURE(k);
+                    allocator.fail_at(k, persistent);
+                    const Call failed = call(entry, input.xyz, params);
+                    REQUIRE(failed.status == DBRG_ERR_OUT_OF_MEMORY);
+                    REQUIRE(failed.elements == 0);
+                    require_nothing_held(allocator);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("cancelling at any progress report gives CANCELLED and leaks nothing") {
+    for (const Input& input : inputs()) {
+        for (EntryPoint entry : ENTRY_POINTS) {
+            CAPTURE(input.name);
+            CAPTURE(entry_name(entry));
+            test::CountingAllocator allocator;
+            Canceller canceller;
+            dbrg_params params;
+            dbrg_params_init(&params);
+            params.allocator = allocator.get();
+            params.progress = Canceller::report;
+            params.progress_user = &canceller;
+            call(entry, input.xyz, params);
+            const uint64_t reports = canceller.calls;
+            REQUIRE(reports > 0);
+            for (uint64_t k = 1; k <= reports; ++k) {
+                CAPTURE(k);
+                canceller = Canceller{0, k, 0};
+                const Call cancelled = call(entry, input.xyz, params);
+                REQUIRE(cancelled.status == DBRG_ERR_CANCELLED);
+                REQUIRE(cancelled.elements == 0);
+                REQUIRE(canceller.calls == k);
+                require_nothing_held(allocator);
+            }
+        }
+    }
+}
+
+TEST_CASE("point counts beyond the limits fail before anything is allocated or read") {
+    // Four real points; the counts and strides below claim far more, which must never be read.
+    const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const struct {
+        const char* what;
+        size_t count;
+        size_t stride;
+    } lies[] = {
+        {"one more than DBRG_MAX_POINTS", DBRG_MAX_POINTS + 1, 3 * sizeof(double)},
+        {"SIZE_MAX points", std::numeric_limits<size_t>::max(), 3 * sizeof(double)},
+        {"count * stride overflows", 2, std::numeric_limits<size_t>::max() / 2 + 1},
+        {"count * stride overflows at the limit", DBRG_MAX_POINTS, std::numeric_limits<size_t>::max() / 1024},
+    };
+    static_assert(DBRG_MAX_POINTS == 0x7fffffffu, "indices are 32-bit with UINT32_MAX reserved");
+    for (const auto& lie : lies) {
+        CAPTURE(lie.what);
+        const dbrg_points points{xyz.data(), lie.count, lie.stride, DBRG_FLOAT64};
+        test::CountingAllocator allocator;
+        dbrg_params params;
+        dbrg_params_init(&params);
+        params.allocator = allocator.get();
+
+        dbrg_mesh* mesh = nullptr;
+        CHECK(dbrg_reconstruct(&points, &params, &mesh) == DBRG_ERR_TOO_MANY_POINTS);
+        CHECK(std::string(dbrg_mesh_message(mesh)).find(std::to_string(lie.count)) != std::string::npos);
+        dbrg_mesh_destroy(mesh);
+        dbrg_tetrahedralization* tets = nullptr;
+        CHECK(dbrg_tetrahedralize(&points, &params, &tets) == DBRG_ERR_TOO_MANY_POINTS);
+        dbrg_tetrahedralization_destroy(tets);
+        char message[256];
+        CHECK(dbrg_points_validate(&points, allocator.get(), message, sizeof message) == DBRG_ERR_TOO_MANY_POINTS);
+        CHECK(message[0] != '\0');
+        // Only the result objects themselves: nothing sized by the claimed count.
+        CHECK(allocator.largest_request() < 4096);
+        require_nothing_held(allocator);
+    }
+}

@@ -1,0 +1,157 @@
+// Concurrency: four threads reconstructing and tetrahedralizing different inputs at once, each with its own
+// allocator and progress callback, get exactly the results the same calls give one at a time; and one
+// result is read from four threads at once. Built and run under ThreadSanitizer in CI (.ci/test).
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "dbrg/dbrg.h"
+#include "delaunay_test_support.h"
+#include "samples/samples.h"
+#include "support/counting_allocator.h"
+
+using namespace dbrg;
+
+namespace {
+
+const size_t THREADS = 4;
+
+std::vector<std::vector<double>> inputs() {
+    return {samples::sample(samples::Shape::sphere, 800),       samples::sample(samples::Shape::torus, 1000),
+            samples::sample(samples::Shape::hemisphere, 700),   samples::sample(samples::Shape::double_torus, 1200),
+            samples::sample(samples::Shape::cube, 800),         samples::sample(samples::Shape::saddle, 700),
+            dbrg_test::cube_surface_lattice(8),                 dbrg_test::lattice(6, 0.25, 9)};
+}
+
+// What one call produced; compared whole between runs.
+struct Outcome {
+    dbrg_status status = DBRG_ERR_INTERNAL;
+    std::vector<uint32_t> triangles;
+    std::vector<uint32_t> loops;  // each loop's length, then its vertices
+    std::vector<uint32_t> tets;
+    std::vector<uint32_t> adjacency;
+    uint64_t live_blocks_after = 0;
+    uint64_t progress_reports = 0;
+
+    bool operator==(const Outcome& o) const {
+        return status == o.status && triangles == o.triangles && loops == o.loops && tets == o.tets && adjacency == o.adjacency;
+    }
+};
+
+int count_report(void* user, dbrg_stage, double) {
+    ++*static_cast<uint64_t*>(user);
+    return 0;
+}
+
+// Reconstructs and tetrahedralizes `xyz` with a private allocator and progress counter; `threads` is the
+// parameter of that name, whose value must not change the result.
+Outcome run(const std::vector<double>& xyz, uint32_t threads) {
+    Outcome out;
+    test::CountingAllocator allocator;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.allocator = allocator.get();
+    params.progress = count_report;
+    params.progress_user = &out.progress_reports;
+    params.threads = threads;
+    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+
+    dbrg_mesh* mesh = nullptr;
+    out.status = dbrg_reconstruct(&points, &params, &mesh);
+    const uint32_t* triangles = dbrg_mesh_triangles(mesh);
+    out.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
+    for (uint32_t loop = 0; loop < dbrg_mesh_boundary_loop_count(mesh); ++loop) {
+        uint32_t length = 0;
+        const uint32_t* vertices = dbrg_mesh_boundary_loop(mesh, loop, &length);
+        out.loops.push_back(length);
+        out.loops.insert(out.loops.end(), vertices, vertices + length);
+    }
+    dbrg_mesh_destroy(mesh);
+
+    dbrg_tetrahedralization* tets = nullptr;
+    if (dbrg_tetrahedralize(&points, &params, &tets) == DBRG_OK) {
+        const size_t n = 4 * size_t(dbrg_tetrahedralization_tet_count(tets));
+        out.tets.assign(dbrg_tetrahedralization_tets(tets), dbrg_tetrahedralization_tets(tets) + n);
+        out.adjacency.assign(dbrg_tetrahedralization_adjacency(tets), dbrg_tetrahedralization_adjacency(tets) + n);
+    }
+    dbrg_tetrahedralization_destroy(tets);
+    out.live_blocks_after = allocator.live_blocks();
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("four threads at once get the results each call gets alone") {
+    const std::vector<std::vector<double>> sets = inputs();
+    std::vector<Outcome> alone;
+    for (const std::vector<double>& xyz : sets) {
+        alone.push_back(run(xyz, 1));
+        REQUIRE(alone.back().status == DBRG_OK);
+    }
+
+    // Thread t takes inputs t, t + 4, ... and, in a second round, those of thread t + 1, so that every input
+    // runs twice while other inputs run beside it. Each thread sets a different `threads` parameter.
+    std::vector<std::vector<Outcome>> together(THREADS);
+    std::vector<std::thread> workers;
+    for (size_t t = 0; t < THREADS; ++t) {
+        workers.emplace_back([&, t] {
+            const uint32_t threads_parameter[THREADS] = {1, 0, 2, 4};
+            for (size_t round = 0; round < 2; ++round) {
+                for (size_t i = (t + round) % THREADS; i < sets.size(); i += THREADS) {
+                    together[t].push_back(run(sets[i], threads_parameter[t]));
+                }
+            }
+        });
+    }
+    for (std::thread& worker : workers) worker.join();
+
+    for (size_t t = 0; t < THREADS; ++t) {
+        size_t k = 0;
+        for (size_t round = 0; round < 2; ++round) {
+            for (size_t i = (t + round) % THREADS; i < sets.size(); i += THREADS, ++k) {
+                CAPTURE(t);
+                CAPTURE(i);
+                REQUIRE(k < together[t].size());
+                CHECK(together[t][k] == alone[i]);
+                CHECK(together[t][k].live_blocks_after == 0);
+                CHECK(together[t][k].progress_reports > 0);
+            }
+        }
+    }
+}
+
+TEST_CASE("one result read from four threads at once") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::open_cylinder, 1500);
+    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    dbrg_mesh* mesh = nullptr;
+    REQUIRE(dbrg_reconstruct(&points, nullptr, &mesh) == DBRG_OK);
+
+    // Every reader sums everything the accessors give; all sums must agree.
+    std::vector<uint64_t> sums(THREADS, 0);
+    std::atomic<int> ready{0};
+    std::vector<std::thread> readers;
+    for (size_t t = 0; t < THREADS; ++t) {
+        readers.emplace_back([&, t] {
+            ++ready;
+            while (ready.load() < int(THREADS)) std::this_thread::yield();
+            uint64_t sum = dbrg_mesh_status(mesh) + dbrg_mesh_point_count(mesh);
+            const uint32_t* triangles = dbrg_mesh_triangles(mesh);
+            for (size_t i = 0; i < 3 * size_t(dbrg_mesh_triangle_count(mesh)); ++i) sum += triangles[i] * (i + 1);
+            for (uint32_t loop = 0; loop < dbrg_mesh_boundary_loop_count(mesh); ++loop) {
+                uint32_t length = 0;
+                const uint32_t* vertices = dbrg_mesh_boundary_loop(mesh, loop, &length);
+                for (uint32_t i = 0; i < length; ++i) sum += vertices[i];
+            }
+            dbrg_stats stats;
+            stats.struct_size = sizeof stats;
+            dbrg_mesh_stats(mesh, &stats);
+            sums[t] = sum + stats.triangles + std::string(dbrg_mesh_message(mesh)).size();
+        });
+    }
+    for (std::thread& reader : readers) reader.join();
+    for (size_t t = 1; t < THREADS; ++t) CHECK(sums[t] == sums[0]);
+    dbrg_mesh_destroy(mesh);
+}
