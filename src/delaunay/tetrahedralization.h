@@ -30,7 +30,8 @@ public:
     // set on the context). On failure the object is left empty. Writes context.stats.seconds_sort,
     // seconds_delaunay (insertion only) and tetrahedra, and adds `counters` to the predicate_* fields.
     // The tetrahedra are a function of the coordinates only: the same point array in any memory
-    // gives the same slots in the same order.
+    // gives the same slots in the same order. The points are read in place, so numbering them along a
+    // space-filling curve first (renumber_spatially, as the pipeline does) keeps neighbours close in memory.
     dbrg_status build(const double* points, uint32_t count, Context& context);
 
     // Empties the object and gives its memory back.
