@@ -175,17 +175,28 @@ TEST_CASE("a tetrahedron's four faces close up") {
     for (uint32_t h = 0; h < 12; ++h) CHECK_FALSE(surface.is_boundary(h));
 }
 
-TEST_CASE("truncate removes a separate last component and frees its vertices") {
+TEST_CASE("remove_small_components keeps the largest component and the large enough ones") {
     Memory memory(nullptr);
     Surface surface(memory);
-    REQUIRE(surface.reset(8));
-    surface.add_face(0, 1, 2, 0);
+    REQUIRE(surface.reset(12));
+    // A closed tetrahedron (4 faces), a strip of 2 faces, and a single face, all apart.
+    surface.add_face(0, 2, 1, 0);
+    surface.add_face(0, 1, 3, 0);
+    surface.add_face(1, 2, 3, 0);
+    surface.add_face(2, 0, 3, 0);
     surface.add_face(4, 5, 6, 0);
     surface.add_face(6, 5, 7, 0);
-    CHECK(surface.truncate(1) == 4);
-    CHECK(surface.face_count() == 1);
-    CHECK_FALSE(surface.is_used(5));
-    CHECK(surface.is_used(0));
+    surface.add_face(8, 9, 10, 0);
+    Array<uint32_t> removed(memory);
+    REQUIRE(surface.remove_small_components(2, removed));
+    CHECK(removed.size() == 1);  // the single face; the strip has 2, the tetrahedron is the largest
+    CHECK(surface.face_removed(6));
+    CHECK_FALSE(surface.is_used(8));
+    CHECK(surface.is_used(5));
+    require_valid(surface);
+    REQUIRE(surface.remove_small_components(5, removed));
+    CHECK(removed.size() == 3);
+    CHECK(surface.live_face_count() == 4);
     require_valid(surface);
 }
 

@@ -16,8 +16,8 @@
 namespace dbrg {
 namespace {
 
-// A component grown from a later seed must reach this many faces to be kept: fewer are stray points
-// (noise, outliers) rather than a second object.
+// A component grown from a later seed must reach this many faces to count as a second object; fewer are
+// stray points (noise, outliers), removed at the end if they stay apart.
 const uint32_t MIN_SEEDED_COMPONENT_FACES = 16;
 
 // Orders the seed triangle so its normal points up (+z), falling back to +x, then +y, for vertical ones.
@@ -64,18 +64,17 @@ dbrg_status RegionGrower::grow() {
         const bool seeded = find_seed(v, corners, tet);
         if (context_.memory.failed()) return context_.fail_out_of_memory();
         if (!seeded) continue;
-        const uint32_t first_face = surface_.face_count();
         const uint32_t faces_before = surface_.live_face_count();
         DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
         DBRG_PROPAGATE(grow_component());
         DBRG_PROPAGATE(resolve_pinches());
-        if (components_ > 0 && surface_.live_face_count() - faces_before < MIN_SEEDED_COMPONENT_FACES) {
-            remove_component(first_face);
-            continue;
-        }
-        context_.stats.components = ++components_;
+        // A seed that grew only a few faces (stray points) does not count against max_components; if its
+        // faces stay apart from everything else, they go with the islands below. (It may also have joined an
+        // earlier component: growing can attach to any boundary vertex.)
+        if (components_ == 0 || surface_.live_face_count() >= faces_before + MIN_SEEDED_COMPONENT_FACES) ++components_;
     }
     DBRG_PROPAGATE(remove_islands());
+    context_.stats.components = components_;  // the output stage recounts after hole filling
     return context_.report(DBRG_STAGE_GROW, 1.0);
 }
 
@@ -334,14 +333,6 @@ dbrg_status RegionGrower::resolve_pinches() {
     for (uint32_t f : removed) radius_sum_ -= face_radius(f);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
     return DBRG_OK;
-}
-
-// Undoes a component that stayed too small; its faces are the last ones and touch no other component.
-void RegionGrower::remove_component(uint32_t first_face) {
-    for (uint32_t f = first_face; f < surface_.face_count(); ++f) radius_sum_ -= surface_.face_removed(f) ? 0 : face_radius(f);
-    used_vertices_ -= surface_.truncate(first_face);
-    versions_.shrink(3 * size_t(first_face));
-    cause_.shrink(3 * size_t(first_face));
 }
 
 Vec3 RegionGrower::face_normal(uint32_t f) const {

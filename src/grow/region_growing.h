@@ -62,7 +62,6 @@ private:
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
     dbrg_status resolve_pinches();
     dbrg_status remove_islands();
-    void remove_component(uint32_t first_face);
     // Recomputed from the points rather than stored: cheaper in memory, and exact copies of the originals.
     Vec3 face_normal(uint32_t face) const;
     double face_radius(uint32_t face) const;
@@ -78,7 +77,7 @@ private:
     // wrap: an old entry taken for current is still examined in full before anything is attached.
     Array<uint8_t> versions_;
     Array<uint8_t> cause_;           // per half-edge: BoundaryCause
-    uint32_t components_ = 0;        // grown from seeds and kept
+    uint32_t components_ = 0;        // seeds that grew into a surface of their own
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a

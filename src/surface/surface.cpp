@@ -210,29 +210,6 @@ bool Surface::remove_small_components(uint32_t min_faces, Array<uint32_t>& remov
     return true;
 }
 
-uint32_t Surface::truncate(uint32_t first_face) {
-    uint32_t freed = 0;
-    for (size_t h = 3 * size_t(first_face); h < corners_.size(); ++h) {
-        const uint32_t v = corners_[h];
-        if (vertex_halfedge_[v] != NO_HALFEDGE) ++freed;
-        vertex_halfedge_[v] = NO_HALFEDGE;
-        if (pinched_[v]) {
-            pinched_[v] = 0;
-            --pinched_vertices_;
-        }
-    }
-    size_t kept = 0;
-    for (const ExtraFan& fan : extra_fans_) {
-        if (vertex_halfedge_[fan.vertex] != NO_HALFEDGE) extra_fans_[kept++] = fan;
-    }
-    extra_fans_.shrink(kept);
-    for (uint32_t f = first_face; f < face_count(); ++f) removed_faces_ -= face_removed(f) ? 1 : 0;
-    corners_.shrink(3 * size_t(first_face));
-    twins_.shrink(3 * size_t(first_face));
-    tets_.shrink(first_face);
-    return freed;
-}
-
 bool Surface::add_fan(uint32_t v, uint32_t h) {
     if (vertex_halfedge_[v] == NO_HALFEDGE) {
         vertex_halfedge_[v] = h;

@@ -120,10 +120,6 @@ public:
     // the removed faces to `removed`. Returns false on allocation failure.
     bool remove_small_components(uint32_t min_faces, Array<uint32_t>& removed);
 
-    // Removes faces first_face .. face_count() - 1, which must share no edge or vertex with earlier faces
-    // (a component grown last). Returns how many vertices that frees.
-    uint32_t truncate(uint32_t first_face);
-
     // Checks every invariant above from scratch. On failure writes a sentence into message.
     bool validate(char* message, size_t message_capacity) const;
 
