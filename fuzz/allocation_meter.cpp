@@ -2,6 +2,8 @@
 // every allocation of the process, libFuzzer's own included; measurements start from what is held then.
 #include "allocation_meter.h"
 
+#include <stddef.h>
+
 #include <atomic>
 
 #if defined(__has_feature)
@@ -14,7 +16,12 @@
 #endif
 
 #ifdef DBRG_ALLOCATION_METER
-#include <sanitizer/allocator_interface.h>
+// From the sanitizer runtime (declared here: GCC ships no sanitizer/allocator_interface.h).
+extern "C" {
+int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*, size_t),
+                                              void (*free_hook)(const volatile void*));
+size_t __sanitizer_get_allocated_size(const volatile void* block);
+}
 #endif
 
 namespace dbrg::fuzz {
@@ -34,8 +41,7 @@ void on_allocate(const volatile void*, size_t size) {
 }
 
 void on_release(const volatile void* block) {
-    held.fetch_sub(static_cast<long long>(__sanitizer_get_allocated_size(const_cast<const void*>(block))),
-                   std::memory_order_relaxed);
+    held.fetch_sub(static_cast<long long>(__sanitizer_get_allocated_size(block)), std::memory_order_relaxed);
 }
 
 // Installed before main, so that `held` counts every block that can later be freed.
