@@ -245,9 +245,6 @@ void check_variant(Variant variant, uint32_t choice, const PointSet& set, const 
     switch (variant) {
     case Variant::none: return;
     case Variant::reversed:
-        // Off the grid, points closer than 2^-200 of the extent may be merged, and which of them stands for
-        // the group (the smallest input index) then depends on the order: only grid sets must match.
-        if (!set.on_grid) return;
         for (size_t i = 0; i < n; ++i) {
             original[i] = static_cast<uint32_t>(n - 1 - i);
             std::copy_n(&set.xyz[3 * (n - 1 - i)], 3, &xyz[3 * i]);

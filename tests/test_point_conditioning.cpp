@@ -174,3 +174,25 @@ TEST_CASE("conditioning under a failing allocator") {
         CHECK(counting.live_blocks == 0);
     }
 }
+
+TEST_CASE("points closer than the predicates' grid merge onto the smallest coordinates, in any order") {
+    // Two distinct points 3e-289 apart in a cloud of unit extent round to one grid point; the one with the
+    // smaller coordinates stands for both, wherever it is in the input.
+    const std::vector<double> base = {0, 0, 1, 1, 0, 0, 0, 1, 0, 1, 1, 1};
+    const double near_a[3] = {0, -1.7e-18, 3e-289}, near_b[3] = {0, -1.7e-18, 0};
+    for (bool a_first : {true, false}) {
+        CAPTURE(a_first);
+        std::vector<double> xyz = base;
+        const double* first = a_first ? near_a : near_b;
+        const double* second = a_first ? near_b : near_a;
+        xyz.insert(xyz.begin(), first, first + 3);
+        xyz.insert(xyz.end(), second, second + 3);
+        Context context(test_params());
+        ConditionedPoints out(context.memory);
+        REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, out) == DBRG_OK);
+        CHECK(out.size() == 5);
+        CHECK(out.duplicates_merged == 1);
+        const uint32_t expected = a_first ? 5 : 0;  // where near_b, the smaller one, is
+        CHECK(std::count(out.input_index.begin(), out.input_index.end(), expected) == 1);
+    }
+}

@@ -243,7 +243,9 @@ DBRG_API uint32_t dbrg_mesh_triangle_count(const dbrg_mesh* mesh);
 
 /* Returns 3 * dbrg_mesh_triangle_count indices into the caller's input points, each triangle
  * counter-clockwise seen from outside (closed components face outward). Merged duplicate points
- * are represented by the smallest input index among them. NULL when there are no triangles. */
+ * are represented by the smallest input index among them (points closer than 2^-201 of the cloud's
+ * extent are merged too: then by the lexicographically smallest of their coordinates first, so the
+ * choice never depends on the input order). NULL when there are no triangles. */
 DBRG_API const uint32_t* dbrg_mesh_triangles(const dbrg_mesh* mesh);
 
 /* Returns the number of boundary loops (open-surface borders and holes left open). */

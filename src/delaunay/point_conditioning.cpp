@@ -119,8 +119,10 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     out.scale_exponent = -exponent;
     for (int k = 0; k < 3; ++k) out.origin[k] = exact_origin(xyz, count, k, lo[k], exponent);
 
-    // The transformed points with their input index, sorted by coordinates and then by index, so the
-    // first of a group of equal points is the one with the smallest caller index.
+    // The transformed points with their input index, sorted by coordinates, then by the caller's
+    // coordinates, then by index: the first of a group of equal points is the one with the smallest caller
+    // coordinates (several distinct ones may round to one grid point), and among exact copies the one with
+    // the smallest index. So the representative never depends on the input order.
     Array<IndexedPoint> sorted(context.memory);
     if (!sorted.resize(count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) {
@@ -128,10 +130,14 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
         for (int k = 0; k < 3; ++k) q.p[k] = snap_to_predicate_grid(ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent));
         q.index = static_cast<uint32_t>(i);
     }
-    std::sort(sorted.begin(), sorted.end(), [](const IndexedPoint& a, const IndexedPoint& b) {
-        if (a.p[0] != b.p[0]) return a.p[0] < b.p[0];
-        if (a.p[1] != b.p[1]) return a.p[1] < b.p[1];
-        if (a.p[2] != b.p[2]) return a.p[2] < b.p[2];
+    std::sort(sorted.begin(), sorted.end(), [xyz](const IndexedPoint& a, const IndexedPoint& b) {
+        for (int k = 0; k < 3; ++k) {
+            if (a.p[k] != b.p[k]) return a.p[k] < b.p[k];
+        }
+        for (int k = 0; k < 3; ++k) {
+            const double u = xyz[3 * size_t(a.index) + k], v = xyz[3 * size_t(b.index) + k];
+            if (u != v) return u < v;
+        }
         return a.index < b.index;
     });
 

@@ -19,7 +19,8 @@ struct ConditionedPoints {
     // never on the caller's order. The translation and scaling are exact; the rounding moves a point by
     // at most 2^-201 of the extent, so only points closer than that to each other are merged.
     Array<double> coordinates;
-    // For each distinct point, the smallest caller index among the input points merged into it.
+    // For each distinct point, the caller index standing for the input points merged into it: the one
+    // with the smallest caller coordinates, the smallest index among exact copies.
     Array<uint32_t> input_index;
     // Per axis: the bounding box's minimum corner rounded down to a multiple of 2^-scale_exponent, or
     // 0 on an axis where subtracting that would round some coordinate. The translation is only there
