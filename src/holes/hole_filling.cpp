@@ -43,9 +43,12 @@ dbrg_status HoleFiller::fill() {
     // Delaunay triangles first: S has changed since the holes' edges were last examined.
     DBRG_PROPAGATE(grower_.regrow_holes());
 
-    // Then ears over each remaining hole. Holes are listed first, as filling adds half-edges.
+    // Then ears over each remaining hole. Holes are listed first, as filling adds half-edges, and by the
+    // corners of one boundary edge each: enlarging one hole can remove a face of another, and undoing that
+    // attempt puts the face back under a new id, so a listed half-edge id can go stale while the hole is
+    // still there.
     added_base_ = surface_.face_count();
-    Array<uint32_t> starts(context_.memory);
+    Array<uint32_t> starts(context_.memory);  // two corners per hole
     Array<uint8_t> listed(context_.memory);
     Array<uint32_t> loop(context_.memory);
     if (!listed.resize(3 * size_t(added_base_), 0)) return context_.fail_out_of_memory();
@@ -56,17 +59,19 @@ dbrg_status HoleFiller::fill() {
             g = surface_.fan_exit(g);
             if (g == h) break;
         }
-        if (!starts.push_back(h)) return context_.fail_out_of_memory();
+        if (!starts.push_back(surface_.origin(h)) || !starts.push_back(surface_.target(h))) {
+            return context_.fail_out_of_memory();
+        }
     }
     Journal journal(context_.memory);
-    for (size_t i = 0; i < starts.size(); ++i) {
+    for (size_t i = 0; i < starts.size(); i += 2) {
         journal.added.clear();
         journal.removed.clear();
-        const uint32_t start = starts[i];
-        if (surface_.face_removed(Surface::face_of(start)) || !surface_.is_boundary(start)) continue;  // gone already
+        const uint32_t u = starts[i], v = starts[i + 1];
+        const uint32_t start = surface_.find_halfedge(u, v);
+        if (start == NO_HALFEDGE || !surface_.is_boundary(start)) continue;  // filled with another hole already
         if (!collect_hole(start, loop)) continue;
         // An undone attempt restores faces under new ids: find the hole again by its first edge.
-        const uint32_t u = surface_.origin(start), v = surface_.target(start);
         bool filled = false;
         for (double fold_limit : {context_.params.sliver_angle, LAST_RESORT_FOLD_ANGLE}) {
             if (filled || fold_limit < context_.params.sliver_angle) continue;
@@ -79,7 +84,7 @@ dbrg_status HoleFiller::fill() {
         if (!filled) continue;
         stats.hole_triangles_added += static_cast<uint32_t>(journal.added.size());
         stats.hole_triangles_removed += static_cast<uint32_t>(journal.removed.size());
-        DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 1) / double(starts.size())));
+        DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 2) / double(starts.size())));
     }
     // Enlarging holes can cut a few faces off the rest; such an island is no object of its own.
     Array<uint32_t> islands(context_.memory);
