@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "predicates/expansion.h"
+#include "predicates/filters.h"
 #include "predicates/predicates.h"
 
 using namespace dbrg;
@@ -702,6 +703,177 @@ TEST_CASE("incircle3d_sos with a, b, c nearly collinear") {
         ++checked;
     }
     CHECK(checked > 4000);
+}
+
+namespace {
+
+// The exact sign of the determinant filter::incircle evaluates: rows (p[u] - d[u], p[v] - d[v], |p - d|^2).
+int reference_incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v) {
+    const double* rows[3] = {a, b, c};
+    Big m[9];
+    for (int r = 0; r < 3; ++r) {
+        Big lift = big(0);
+        for (int k = 0; k < 3; ++k) {
+            const Big diff = fixed(rows[r][k]) - fixed(d[k]);
+            lift = lift + diff * diff;
+        }
+        m[3 * r] = fixed(rows[r][u]) - fixed(d[u]);
+        m[3 * r + 1] = fixed(rows[r][v]) - fixed(d[v]);
+        m[3 * r + 2] = lift;
+    }
+    return sign(determinant(m, 3));
+}
+
+int reference_orient2d(const double* a, const double* b, const double* c, int u, int v) {
+    return sign((fixed(a[u]) - fixed(c[u])) * (fixed(b[v]) - fixed(c[v])) -
+                (fixed(a[v]) - fixed(c[v])) * (fixed(b[u]) - fixed(c[u])));
+}
+
+// Rounded to a multiple of 2^-60, so that fixed() is exact whatever the magnitude.
+double on_grid(double x) { return ldexp(nearbyint(ldexp(x, 60)), -60); }
+
+// c + radius * (direction / |direction|), on the grid: within about 2^-60 of the sphere.
+Point on_sphere(const Point& c, double radius, const double* direction) {
+    const double length = sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+    Point p;
+    for (int k = 0; k < 3; ++k) p.c[k] = on_grid(c.c[k] + radius * (direction[k] / length));
+    return p;
+}
+
+// Moves one coordinate by `ulps` units in the last place (towards +2 or -2).
+Point nudged(Point p, int axis, int ulps, bool up) {
+    for (int i = 0; i < ulps; ++i) p.c[axis] = nextafter(p.c[axis], up ? 2.0 : -2.0);
+    return p;
+}
+
+// What the earlier form of the insphere filter could decide: its bound was 72 x 16 roundings times the
+// product of the largest difference per coordinate and the largest one overall, squared.
+bool product_bound_decides(const double* a, const double* b, const double* c, const double* d, const double* e) {
+    const double* rows[4] = {a, b, c, d};
+    double m[4][4], max_axis[3] = {0, 0, 0};
+    for (int r = 0; r < 4; ++r) {
+        m[r][3] = 0;
+        for (int k = 0; k < 3; ++k) {
+            m[r][k] = rows[r][k] - e[k];
+            m[r][3] += m[r][k] * m[r][k];
+            max_axis[k] = std::max(max_axis[k], fabs(m[r][k]));
+        }
+    }
+    // The determinant by cofactors along the lift column (rounding differs, magnitude does not).
+    double det = 0;
+    for (int r = 0; r < 4; ++r) {
+        double minor[3][3];
+        for (int i = 0, row = 0; i < 4; ++i) {
+            if (i == r) continue;
+            for (int k = 0; k < 3; ++k) minor[row][k] = m[i][k];
+            ++row;
+        }
+        const double m3 = minor[0][0] * (minor[1][1] * minor[2][2] - minor[1][2] * minor[2][1]) -
+                          minor[0][1] * (minor[1][0] * minor[2][2] - minor[1][2] * minor[2][0]) +
+                          minor[0][2] * (minor[1][0] * minor[2][1] - minor[1][1] * minor[2][0]);
+        det += (r % 2 == 0 ? -1 : 1) * m[r][3] * m3;
+    }
+    const double max_w = std::max(max_axis[0], std::max(max_axis[1], max_axis[2]));
+    return fabs(det) > 72 * 16 * ldexp(1.0, -53) * max_axis[0] * max_axis[1] * max_axis[2] * max_w * max_w;
+}
+
+} // namespace
+
+TEST_CASE("the filters report only signs the exact reference confirms, and hand zeros over") {
+    Random random(14);
+    int decided[4] = {0, 0, 0, 0}, undecided[4] = {0, 0, 0, 0};
+    auto check = [&](int which, int filtered, int reference) {
+        if (filtered == filter::UNDECIDED) {
+            ++undecided[which];
+        } else {
+            REQUIRE(filtered == reference);
+            ++decided[which];
+        }
+    };
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int ulps = trial % 4 == 0 ? 0 : 1 << random.integer(0, 12);
+        const int axis = random.integer(0, 2);
+        const bool up = random.integer(0, 1) == 1;
+        // orient3d: d rounded onto the plane of a, b, c, then nudged.
+        const Point a = random_point(random), b = random_point(random), c = random_point(random);
+        const double s = random.unit() / 2, t = random.unit() / 2;
+        Point d;
+        for (int k = 0; k < 3; ++k) d.c[k] = on_grid(a.c[k] + s * (b.c[k] - a.c[k]) + t * (c.c[k] - a.c[k]));
+        const Point moved = nudged(d, axis, ulps, up);
+        check(0, filter::orient3d(a, b, c, moved), reference_orient3d(a, b, c, moved));
+        // insphere: five points rounded onto one sphere, the fifth nudged; every fourth case a needle,
+        // four points within 2^-k of each other and the fifth across the sphere.
+        const Point centre{{random.unit() / 4, random.unit() / 4, random.unit() / 4}};
+        const double radius = 0.25 + random.unit() / 8;
+        const Point axis_direction = random_point(random);
+        const double spread = trial % 4 == 1 ? ldexp(1.0, -random.integer(4, 24)) : 1.0;
+        Point p[5];
+        for (int i = 0; i < 5; ++i) {
+            double direction[3];
+            for (int k = 0; k < 3; ++k) direction[k] = (i == 3 ? -1.0 : 1.0) * axis_direction.c[k] + spread * random.unit();
+            p[i] = on_sphere(centre, radius, direction);
+        }
+        p[4] = nudged(p[4], axis, ulps, up);
+        check(1, filter::insphere(p[0], p[1], p[2], p[3], p[4]), reference_insphere(p[0], p[1], p[2], p[3], p[4]));
+        // incircle (its determinant, whatever the points) and orient2d: the plane z = 1/2 and a circle in it.
+        Point q[4];
+        const double circle_centre[2] = {random.unit() / 4, random.unit() / 4};
+        for (Point& r : q) {
+            const double angle = 3.141592653589793 * random.unit();
+            r = Point{{on_grid(circle_centre[0] + radius * cos(angle)), on_grid(circle_centre[1] + radius * sin(angle)), 0.5}};
+        }
+        q[3] = nudged(q[3], axis == 2 ? 0 : axis, ulps, up);
+        check(2, filter::incircle(q[0], q[1], q[2], q[3], 0, 1), reference_incircle_lifted(q[0], q[1], q[2], q[3], 0, 1));
+        Point r;
+        for (int k = 0; k < 3; ++k) r.c[k] = on_grid(q[0].c[k] + s * (q[1].c[k] - q[0].c[k]));
+        r = nudged(r, axis == 2 ? 1 : axis, ulps, up);
+        check(3, filter::orient2d(q[0], q[1], r, 0, 1), reference_orient2d(q[0], q[1], r, 0, 1));
+    }
+    // Exact zeros (lattice points, exactly coplanar or cospherical) are always handed over.
+    Random lattice(15);
+    for (int trial = 0; trial < 5000; ++trial) {
+        Point p[5];
+        for (Point& q : p) q = lattice_point(lattice, 0, 2);
+        check(0, filter::orient3d(p[0], p[1], p[2], p[3]), reference_orient3d(p[0], p[1], p[2], p[3]));
+        check(1, filter::insphere(p[0], p[1], p[2], p[3], p[4]), reference_insphere(p[0], p[1], p[2], p[3], p[4]));
+        check(2, filter::incircle(p[0], p[1], p[2], p[3], 1, 2), reference_incircle_lifted(p[0], p[1], p[2], p[3], 1, 2));
+        check(3, filter::orient2d(p[0], p[1], p[2], 2, 0), reference_orient2d(p[0], p[1], p[2], 2, 0));
+    }
+    // Both outcomes are common: the inputs straddle the bound.
+    for (int which = 0; which < 4; ++which) {
+        CAPTURE(which);
+        CHECK(decided[which] > 1000);
+        CHECK(undecided[which] > 1000);
+    }
+}
+
+TEST_CASE("on needles the insphere filter decides where a bound from the largest differences could not") {
+    // Four points within 2^-16 of each other on a sphere, the fifth across it, and the query point moved
+    // off the sphere by 2^-40 of the radius: well decided in exact terms, but the largest differences are
+    // those to the far point, which made the earlier bound useless.
+    Random random(16);
+    int permanent_only = 0, product_only = 0, checked = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Point centre{{random.unit() / 4, random.unit() / 4, random.unit() / 4}};
+        const double radius = 0.25 + random.unit() / 8;
+        const Point axis_direction = random_point(random);
+        Point p[5];
+        for (int i = 0; i < 5; ++i) {
+            double direction[3];
+            for (int k = 0; k < 3; ++k) direction[k] = (i == 3 ? -1.0 : 1.0) * axis_direction.c[k] + ldexp(random.unit(), -16);
+            p[i] = on_sphere(centre, radius * (i == 4 ? 1 + (trial % 2 ? 0x1p-40 : -0x1p-40) : 1.0), direction);
+        }
+        const int reference = reference_insphere(p[0], p[1], p[2], p[3], p[4]);
+        REQUIRE(reference != 0);
+        const int filtered = filter::insphere(p[0], p[1], p[2], p[3], p[4]);
+        const bool by_product = product_bound_decides(p[0], p[1], p[2], p[3], p[4]);
+        if (filtered != filter::UNDECIDED) REQUIRE(filtered == reference);
+        permanent_only += filtered != filter::UNDECIDED && !by_product;
+        product_only += filtered == filter::UNDECIDED && by_product;
+        ++checked;
+    }
+    CHECK(permanent_only > checked * 9 / 10);
+    CHECK(product_only == 0);
 }
 
 // Whether the components of e are non-zero (but for a lone zero), increase in magnitude and do not overlap:

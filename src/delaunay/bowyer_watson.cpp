@@ -63,65 +63,11 @@ struct EdgeEntry {
 };
 constexpr uint64_t EMPTY_EDGE = UINT64_MAX;
 
-// The engine's own first stage for its two predicates: the same floating-point determinants as
-// predicates/filters.h, but with Shewchuk's error bound, a constant times the permanent (the determinant
-// with every term made positive) instead of a constant times the product of the largest differences.
-// The two agree on compact tetrahedra; on the needles that fill the inside of a densely sampled closed
-// surface, where one vertex is far and the others are close to the query point, the permanent is smaller
-// by orders of magnitude, and the predicates' exact fallback (most of the time on a 1M-point torus) is
-// then rarely needed. A sign is returned only when it is certain; otherwise the exact predicate decides.
-// The constants count the roundings on the path of any monomial (input differences included, squared
-// differences twice) exactly as filters.h does: 8 for orient3d, 16 for insphere; the slack factor
-// covers computing the permanent itself in floating point from rounded differences.
-constexpr int UNDECIDED = 2;
-constexpr double ROUNDOFF_SLACK = 0x1p-53 * (1 + 0x1p-20);
-constexpr double ORIENT3D_PERMANENT_BOUND = 8 * ROUNDOFF_SLACK;
-constexpr double INSPHERE_PERMANENT_BOUND = 16 * ROUNDOFF_SLACK;
-constexpr double UNDERFLOW_GUARD = 0x1p-960;
-
-int certain_sign(double value, double bound) { return fabs(value) > bound ? (value > 0 ? 1 : -1) : UNDECIDED; }
-
-// orient3d(a, b, c, d) of predicates.h, or UNDECIDED.
-int orient3d_filtered(const double* a, const double* b, const double* c, const double* d) {
-    const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-    const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-    const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-    const double bc = bdx * cdy - cdx * bdy, ca = cdx * ady - adx * cdy, ab = adx * bdy - bdx * ady;
-    const double det = adz * bc + bdz * ca + cdz * ab;
-    const double permanent = fabs(adz) * (fabs(bdx * cdy) + fabs(cdx * bdy)) +
-                             fabs(bdz) * (fabs(cdx * ady) + fabs(adx * cdy)) +
-                             fabs(cdz) * (fabs(adx * bdy) + fabs(bdx * ady));
-    return certain_sign(det, ORIENT3D_PERMANENT_BOUND * permanent + UNDERFLOW_GUARD);
-}
-
-// insphere_exact(a, b, c, d, e) of predicates.h, or UNDECIDED.
-int insphere_filtered(const double* a, const double* b, const double* c, const double* d, const double* e) {
-    const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
-    const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
-    const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
-    const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
-    const double aexbey = aex * bey, bexaey = bex * aey, aexcey = aex * cey, cexaey = cex * aey;
-    const double aexdey = aex * dey, dexaey = dex * aey, bexcey = bex * cey, cexbey = cex * bey;
-    const double bexdey = bex * dey, dexbey = dex * bey, cexdey = cex * dey, dexcey = dex * cey;
-    const double ab = aexbey - bexaey, ac = aexcey - cexaey, ad = aexdey - dexaey;
-    const double bc = bexcey - cexbey, bd = bexdey - dexbey, cd = cexdey - dexcey;
-    const double abc = aez * bc - bez * ac + cez * ab;
-    const double abd = aez * bd - bez * ad + dez * ab;
-    const double acd = aez * cd - cez * ad + dez * ac;
-    const double bcd = bez * cd - cez * bd + dez * bc;
-    const double a_lift = aex * aex + aey * aey + aez * aez;
-    const double b_lift = bex * bex + bey * bey + bez * bez;
-    const double c_lift = cex * cex + cey * cey + cez * cez;
-    const double d_lift = dex * dex + dey * dey + dez * dez;
-    const double det = (d_lift * abc - c_lift * abd) + (b_lift * acd - a_lift * bcd);
-    const double pab = fabs(aexbey) + fabs(bexaey), pac = fabs(aexcey) + fabs(cexaey);
-    const double pad = fabs(aexdey) + fabs(dexaey), pbc = fabs(bexcey) + fabs(cexbey);
-    const double pbd = fabs(bexdey) + fabs(dexbey), pcd = fabs(cexdey) + fabs(dexcey);
-    const double az = fabs(aez), bz = fabs(bez), cz = fabs(cez), dz = fabs(dez);
-    const double permanent = d_lift * (az * pbc + bz * pac + cz * pab) + c_lift * (az * pbd + bz * pad + dz * pab) +
-                             b_lift * (az * pcd + cz * pad + dz * pac) + a_lift * (bz * pcd + cz * pbd + dz * pbc);
-    return certain_sign(det, INSPHERE_PERMANENT_BOUND * permanent + UNDERFLOW_GUARD);
-}
+struct FiledFace {
+    uint64_t reversed;  // y << 32 | x for the face filed under (x, y): the key of the face across it
+    uint32_t link;      // the new tetrahedron and its local face, as filed
+    uint32_t entry;     // where in the table it was filed
+};
 
 // A hint to the processor that `address` is needed soon. The tetrahedron store is far larger than the
 // caches, and the cavity search otherwise waits for each neighbour's record in turn.
@@ -145,7 +91,7 @@ public:
     DelaunayBuilder(Tetrahedralization& out, Context& context)
         : out_(out), context_(context), memory_(context.memory), cavity_(memory_), outside_(memory_),
           boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
-          used_edges_(memory_) {}
+          filed_(memory_) {}
 
     // Inserts points order[0], ..., order[count - 1] of `points` in that order (the four first affinely
     // independent ones first). Vertex ids are indices into `points`.
@@ -191,7 +137,7 @@ private:
     Array<NewTet> new_tets_;
     Array<uint32_t> new_slots_;
     Array<EdgeEntry> edges_;
-    Array<uint32_t> used_edges_;  // the entries of edges_ one insertion filled
+    Array<FiledFace> filed_;      // the faces one insertion filed in edges_
 };
 
 dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
@@ -228,19 +174,9 @@ bool DelaunayBuilder::in_conflict(const uint32_t* tet, const double* p) {
     if (tet[3] == INFINITE_VERTEX) {
         // Beyond the hull face (a, b, c), or on its plane and inside its circumcircle: the limit of the
         // circumsphere test as the fourth vertex goes to infinity.
-        int side = orient3d_filtered(a, b, c, p);
-        if (side != UNDECIDED) {
-            ++counters.calls;
-            return side > 0;
-        }
-        side = orient3d(a, b, c, p, counters);
+        const int side = orient3d(a, b, c, p, counters);
         if (side != 0) return side > 0;
         return incircle3d_sos(a, b, c, p, counters) > 0;
-    }
-    const int sign = insphere_filtered(a, b, c, point(tet[3]), p);
-    if (sign != UNDECIDED) {
-        ++counters.calls;
-        return sign > 0;
     }
     return insphere_sos(a, b, c, point(tet[3]), p, counters) > 0;
 }
@@ -264,12 +200,7 @@ dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
             // p replacing vertex lf: negative when p is on the far side of face lf.
             const double* kept = q[lf];
             q[lf] = p;
-            int side = orient3d_filtered(q[0], q[1], q[2], q[3]);
-            if (side == UNDECIDED) {
-                side = orient3d(q[0], q[1], q[2], q[3], counters);
-            } else {
-                ++counters.calls;
-            }
+            const int side = orient3d(q[0], q[1], q[2], q[3], counters);
             q[lf] = kept;
             if (side < 0) {
                 exit = lf;
@@ -466,7 +397,8 @@ dbrg_status DelaunayBuilder::link_new_tets() {
     // of the cavity boundary. Seen from the new tetrahedron, with v first, such a face runs v -> x -> y;
     // the tetrahedron on the other side sees the same face reversed, v -> y -> x. So a first pass files
     // every face under its directed edge (x, y) and a second pass looks up (y, x): two loops without
-    // the unpredictable found/not-found branch of a single pass.
+    // the unpredictable found/not-found branch of a single pass. The first pass keeps each face's key
+    // (y, x) and table entry for the second and for emptying the table.
     const size_t face_count = new_tets_.size();
     size_t capacity = 64;
     while (capacity < 6 * face_count) capacity *= 2;
@@ -474,12 +406,11 @@ dbrg_status DelaunayBuilder::link_new_tets() {
         if (!edges_.resize(capacity)) return context_.fail_out_of_memory();
         for (EdgeEntry& e : edges_) e.edge = EMPTY_EDGE;
     }
-    if (!used_edges_.reserve(3 * face_count)) return context_.fail_out_of_memory();
+    if (!filed_.resize(3 * face_count)) return context_.fail_out_of_memory();
     const uint32_t mask = static_cast<uint32_t>(edges_.size() - 1);
     EdgeEntry* table = edges_.data();
-    uint32_t* used = used_edges_.data();
-    size_t used_count = 0;
-    for (size_t i = 0; i < face_count; ++i) {
+    FiledFace* filed = filed_.data();
+    for (size_t i = 0, j = 0; i < face_count; ++i) {
         const uint32_t s = new_slots_[i];
         const NewTet& made = new_tets_[i];
         for (uint32_t g = 0; g < 4; ++g) {
@@ -491,25 +422,19 @@ dbrg_status DelaunayBuilder::link_new_tets() {
             while (table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
             table[k].edge = edge;
             table[k].link = s << 2 | g;
-            used[used_count++] = k;
+            filed[j++] = FiledFace{y << 32 | x, s << 2 | g, k};
         }
     }
     bool complete = true;
-    for (size_t i = 0; i < face_count; ++i) {
-        const uint32_t s = new_slots_[i];
-        const NewTet& made = new_tets_[i];
-        for (uint32_t g = 0; g < 4; ++g) {
-            if (g == made.face) continue;
-            const uint64_t x = made.vertex[DIRECTED_EDGE[made.face][g][0]];
-            const uint64_t y = made.vertex[DIRECTED_EDGE[made.face][g][1]];
-            const uint64_t reversed = y << 32 | x;
-            uint32_t k = hash_edge(reversed) & mask;
-            while (table[k].edge != reversed && table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
-            complete &= table[k].edge == reversed;
-            adjacency_[4 * size_t(s) + g] = table[k].link;
-        }
+    const size_t filed_count = filed_.size();
+    for (size_t j = 0; j < filed_count; ++j) {
+        const uint64_t reversed = filed[j].reversed;
+        uint32_t k = hash_edge(reversed) & mask;
+        while (table[k].edge != reversed && table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
+        complete &= table[k].edge == reversed;
+        adjacency_[filed[j].link] = table[k].link;  // link = slot << 2 | face = the face's adjacency index
     }
-    for (size_t i = 0; i < used_count; ++i) table[used[i]].edge = EMPTY_EDGE;
+    for (size_t j = 0; j < filed_count; ++j) table[filed[j].entry].edge = EMPTY_EDGE;
     if (!complete) return context_.fail(DBRG_ERR_INTERNAL, "the cavity boundary is not a closed surface (a bug in dbrg)");
     return DBRG_OK;
 }

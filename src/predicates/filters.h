@@ -1,19 +1,36 @@
 // Semi-static floating-point filters: each evaluates a determinant in doubles together with a bound on its
-// rounding error computed from the magnitudes of the coordinate differences, and reports a sign only when
-// the bound proves it.
+// rounding error computed alongside it, and reports a sign only when the bound proves it.
 //
-// Based on: A. Meyer and S. Pion, "FPG: A code generator for fast and certified geometric predicates"
-// (2008), for the form of the bound (a constant times the product of the largest difference in each
-// coordinate). The constants are derived here, not taken from there:
+// Based on: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
+// Predicates" (1997), for the form of the bound (a constant times the permanent of the determinant); the
+// constants are derived here, not taken from there.
 //
-// With u = 2^-53, every operation on doubles rounds once, so a computed sum of monomials differs from the
-// exact one by at most gamma_n * (sum of |monomials|), gamma_n = n u / (1 - n u), where n is the largest
-// number of roundings (input differences included, a squared difference counted twice) on the path of any
-// monomial. Each |monomial| is bounded by the product of the column maxima of the differences; using the
-// rounded differences' maxima and rounding the bound itself shift it by a few u relative, covered by
-// inflating n u by 2^-20. Fused multiply-adds would only remove roundings, so the bounds also hold if the
-// caller's compiler contracts this code. Products that underflow add an absolute error below 2^-1060 in
-// total for inputs of magnitude <= 1; UNDERFLOW_GUARD, added to every bound, absorbs it.
+// Why the bound is safe. Each filter evaluates its determinant by a fixed expression tree over the
+// coordinate differences. Expanding the tree writes the exact value as a sum of monomials m_i, each a
+// product of exact differences, and the computed value as sum_i m_i (1 + theta_i), where theta_i collects
+// the roundings on the path of m_i: one per difference it contains (two for a squared difference), one per
+// product and one per sum or difference above it. With u = 2^-53 and at most n roundings on any path,
+// |theta_i| <= gamma_n = n u / (1 - n u) (Higham, "Accuracy and Stability of Numerical Algorithms",
+// Lemma 3.1), so
+//     |computed - exact| <= gamma_n * P,   P = sum_i |m_i|,
+// the tree's permanent: the same tree with every difference of coordinates replaced by its absolute value
+// and every subtraction above them by an addition (the lifts, sums of squares, are their own absolute
+// values). Each filter computes P along that tree from the rounded differences; every operation there acts
+// on non-negative values, so each of its terms loses at most a factor (1 - u) per rounding, and with n'
+// roundings on its longest path the computed P is at least (1 - u)^n' P. The bound actually compared is
+// fl(fl(n u (1 + 2^-20) * P) + UNDERFLOW_GUARD) >= n u (1 + 2^-20) (1 - u)^(n' + 2) P, which is at least
+// gamma_n P whenever (1 + 2^-20) (1 - u)^(n' + 2) (1 - n u) >= 1, true for any n + n' + 2 < 2^32 (here
+// n, n' < 40). So when |computed| exceeds the bound, the exact value is non-zero and has the computed sign.
+// The path counts n are written next to each constant. Fused multiply-adds only remove roundings (a
+// product feeding a sum is not rounded), so the bound also holds if a caller's compiler contracts this code.
+// Underflow: for inputs of magnitude <= 1 (as the predicates require), every rounding that underflows adds
+// an absolute error below 2^-1074, which the later operations multiply by at most 2^12 and the tree sums
+// over fewer than 2^11 paths, to both the value and P: far below UNDERFLOW_GUARD = 2^-960.
+//
+// P is never larger than the earlier form of the bound, a constant times the product of the largest
+// difference in each coordinate (A. Meyer and S. Pion, "FPG", 2008): each |m_i| is at most that product.
+// It is much smaller on needles, the tetrahedra inside a densely sampled closed surface that have one vertex
+// far away and the rest close to the query point, where the product form failed on a large share of calls.
 #pragma once
 
 #include <math.h>
@@ -27,16 +44,17 @@ constexpr int UNDECIDED = 2;
 constexpr double UNIT_ROUNDOFF = 0x1p-53;
 constexpr double SLACK = 1 + 0x1p-20;
 constexpr double UNDERFLOW_GUARD = 0x1p-960;
-// monomials x roundings: orient3d 6 x 8; insphere 4 rows x 3 lift terms x 6 minor terms (each bounded
-// by w^2 x y z, w the largest of x, y, z) x 16; incircle 3 x 3 x 2 (w^2 u v) x 12; orient2d 2 x 4.
-constexpr double ORIENT3D_BOUND = 6 * 8 * UNIT_ROUNDOFF * SLACK;
-constexpr double INSPHERE_BOUND = 72 * 16 * UNIT_ROUNDOFF * SLACK;
-constexpr double INCIRCLE_BOUND = 18 * 12 * UNIT_ROUNDOFF * SLACK;
-constexpr double ORIENT2D_BOUND = 2 * 4 * UNIT_ROUNDOFF * SLACK;
-
-inline double max2(double a, double b) { return a > b ? a : b; }
-inline double max3(double a, double b, double c) { return max2(max2(a, b), c); }
-inline double max4(double a, double b, double c, double d) { return max2(max2(a, b), max2(c, d)); }
+// Roundings on the longest path of a monomial:
+// orient3d: 3 differences + 2 products + 1 subtraction in a 2x2 minor and the product with the third
+//   column (6), + 2 sums of the three terms = 8.
+// insphere: lift 2 (a difference squared) + 1 product + 2 sums = 5; 3x3 minor as orient3d = 8; the product
+//   lift x minor 1; the sum of the four terms 2: 16.
+// incircle: lift 5; 2x2 minor 4; lift x minor 1; the sum of three terms 2: 12.
+// orient2d: 2 differences + 1 product + 1 subtraction = 4.
+constexpr double ORIENT3D_BOUND = 8 * UNIT_ROUNDOFF * SLACK;
+constexpr double INSPHERE_BOUND = 16 * UNIT_ROUNDOFF * SLACK;
+constexpr double INCIRCLE_BOUND = 12 * UNIT_ROUNDOFF * SLACK;
+constexpr double ORIENT2D_BOUND = 4 * UNIT_ROUNDOFF * SLACK;
 
 // One well-predicted branch; the sign itself is selected without branching, since it is as likely
 // positive as negative.
@@ -44,16 +62,18 @@ inline int certain_sign(double value, double bound) {
     return fabs(value) > bound ? (value > 0 ? 1 : -1) : UNDECIDED;
 }
 
-// det[a-d; b-d; c-d]
+// det[a-d; b-d; c-d], expanded along z over the 2x2 xy-minors.
 inline int orient3d(const double* a, const double* b, const double* c, const double* d) {
     const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
     const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
     const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-    const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-    const double max_x = max3(fabs(adx), fabs(bdx), fabs(cdx));
-    const double max_y = max3(fabs(ady), fabs(bdy), fabs(cdy));
-    const double max_z = max3(fabs(adz), fabs(bdz), fabs(cdz));
-    return certain_sign(det, ORIENT3D_BOUND * max_x * max_y * max_z + UNDERFLOW_GUARD);
+    const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+    const double cdxady = cdx * ady, adxcdy = adx * cdy;
+    const double adxbdy = adx * bdy, bdxady = bdx * ady;
+    const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    const double permanent = fabs(adz) * (fabs(bdxcdy) + fabs(cdxbdy)) + fabs(bdz) * (fabs(cdxady) + fabs(adxcdy)) +
+                             fabs(cdz) * (fabs(adxbdy) + fabs(bdxady));
+    return certain_sign(det, ORIENT3D_BOUND * permanent + UNDERFLOW_GUARD);
 }
 
 // The determinant with rows (p - e, |p - e|^2), p = a, b, c, d, expanded along the lift column; the 3x3
@@ -63,8 +83,11 @@ inline int insphere(const double* a, const double* b, const double* c, const dou
     const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
     const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
     const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
-    const double ab = aex * bey - bex * aey, ac = aex * cey - cex * aey, ad = aex * dey - dex * aey;
-    const double bc = bex * cey - cex * bey, bd = bex * dey - dex * bey, cd = cex * dey - dex * cey;
+    const double aexbey = aex * bey, bexaey = bex * aey, aexcey = aex * cey, cexaey = cex * aey;
+    const double aexdey = aex * dey, dexaey = dex * aey, bexcey = bex * cey, cexbey = cex * bey;
+    const double bexdey = bex * dey, dexbey = dex * bey, cexdey = cex * dey, dexcey = dex * cey;
+    const double ab = aexbey - bexaey, ac = aexcey - cexaey, ad = aexdey - dexaey;
+    const double bc = bexcey - cexbey, bd = bexdey - dexbey, cd = cexdey - dexcey;
     const double abc = aez * bc - bez * ac + cez * ab;
     const double abd = aez * bd - bez * ad + dez * ab;
     const double acd = aez * cd - cez * ad + dez * ac;
@@ -74,11 +97,13 @@ inline int insphere(const double* a, const double* b, const double* c, const dou
     const double c_lift = cex * cex + cey * cey + cez * cez;
     const double d_lift = dex * dex + dey * dey + dez * dez;
     const double det = (d_lift * abc - c_lift * abd) + (b_lift * acd - a_lift * bcd);
-    const double max_x = max4(fabs(aex), fabs(bex), fabs(cex), fabs(dex));
-    const double max_y = max4(fabs(aey), fabs(bey), fabs(cey), fabs(dey));
-    const double max_z = max4(fabs(aez), fabs(bez), fabs(cez), fabs(dez));
-    const double max_w = max3(max_x, max_y, max_z);
-    return certain_sign(det, INSPHERE_BOUND * max_x * max_y * max_z * max_w * max_w + UNDERFLOW_GUARD);
+    const double pab = fabs(aexbey) + fabs(bexaey), pac = fabs(aexcey) + fabs(cexaey);
+    const double pad = fabs(aexdey) + fabs(dexaey), pbc = fabs(bexcey) + fabs(cexbey);
+    const double pbd = fabs(bexdey) + fabs(dexbey), pcd = fabs(cexdey) + fabs(dexcey);
+    const double az = fabs(aez), bz = fabs(bez), cz = fabs(cez), dz = fabs(dez);
+    const double permanent = (d_lift * (az * pbc + bz * pac + cz * pab) + c_lift * (az * pbd + bz * pad + dz * pab)) +
+                             (b_lift * (az * pcd + cz * pad + dz * pac) + a_lift * (bz * pcd + cz * pbd + dz * pbc));
+    return certain_sign(det, INSPHERE_BOUND * permanent + UNDERFLOW_GUARD);
 }
 
 // The determinant with rows (p[u] - d[u], p[v] - d[v], |p - d|^2), p = a, b, c, with the full 3D lift.
@@ -89,25 +114,24 @@ inline int incircle(const double* a, const double* b, const double* c, const dou
         bd[k] = b[k] - d[k];
         cd[k] = c[k] - d[k];
     }
-    const double bc = bd[u] * cd[v] - cd[u] * bd[v];
-    const double ac = ad[u] * cd[v] - cd[u] * ad[v];
-    const double ab = ad[u] * bd[v] - bd[u] * ad[v];
+    const double bucv = bd[u] * cd[v], cubv = cd[u] * bd[v];
+    const double aucv = ad[u] * cd[v], cuav = cd[u] * ad[v];
+    const double aubv = ad[u] * bd[v], buav = bd[u] * ad[v];
     const double a_lift = ad[0] * ad[0] + ad[1] * ad[1] + ad[2] * ad[2];
     const double b_lift = bd[0] * bd[0] + bd[1] * bd[1] + bd[2] * bd[2];
     const double c_lift = cd[0] * cd[0] + cd[1] * cd[1] + cd[2] * cd[2];
-    const double det = a_lift * bc - b_lift * ac + c_lift * ab;
-    double max_axis[3];
-    for (int k = 0; k < 3; ++k) max_axis[k] = max3(fabs(ad[k]), fabs(bd[k]), fabs(cd[k]));
-    const double max_w = max3(max_axis[0], max_axis[1], max_axis[2]);
-    return certain_sign(det, INCIRCLE_BOUND * max_axis[u] * max_axis[v] * max_w * max_w + UNDERFLOW_GUARD);
+    const double det = a_lift * (bucv - cubv) - b_lift * (aucv - cuav) + c_lift * (aubv - buav);
+    const double permanent = a_lift * (fabs(bucv) + fabs(cubv)) + b_lift * (fabs(aucv) + fabs(cuav)) +
+                             c_lift * (fabs(aubv) + fabs(buav));
+    return certain_sign(det, INCIRCLE_BOUND * permanent + UNDERFLOW_GUARD);
 }
 
 // det[a - c; b - c] over the coordinates u, v.
 inline int orient2d(const double* a, const double* b, const double* c, int u, int v) {
     const double acu = a[u] - c[u], acv = a[v] - c[v];
     const double bcu = b[u] - c[u], bcv = b[v] - c[v];
-    const double det = acu * bcv - acv * bcu;
-    return certain_sign(det, ORIENT2D_BOUND * max2(fabs(acu), fabs(bcu)) * max2(fabs(acv), fabs(bcv)) + UNDERFLOW_GUARD);
+    const double left = acu * bcv, right = acv * bcu;
+    return certain_sign(left - right, ORIENT2D_BOUND * (fabs(left) + fabs(right)) + UNDERFLOW_GUARD);
 }
 
 } // namespace filter

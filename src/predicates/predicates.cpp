@@ -34,14 +34,6 @@ int orient2d_sign(const double* a, const double* b, const double* c, int u, int 
     return sign != filter::UNDECIDED ? sign : exact::orient2d(a, b, c, u, v);
 }
 
-int insphere_sign(const double* a, const double* b, const double* c, const double* d, const double* e,
-                  PredicateCounters& counters) {
-    const int sign = filter::insphere(a, b, c, d, e);
-    if (sign != filter::UNDECIDED) return sign;
-    ++counters.filter_failures;
-    return exact::insphere(a, b, c, d, e);
-}
-
 // order[0..n) = 0..n-1 sorted so that points[order[i]] ascend lexicographically; ties keep argument order.
 void sort_by_coordinates(const double* const* points, int n, int* order) {
     for (int i = 0; i < n; ++i) {
@@ -88,29 +80,30 @@ int incircle_perturbation_sign(const double* const* points, int u, int v) {
 
 } // namespace
 
+namespace slow_path {
+
 int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters) {
-    ++counters.calls;
-    const int sign = filter::orient3d(a, b, c, d);
-    if (sign != filter::UNDECIDED) return sign;
     ++counters.filter_failures;
     return exact::orient3d(a, b, c, d);
 }
 
 int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
                    PredicateCounters& counters) {
-    ++counters.calls;
-    return insphere_sign(a, b, c, d, e, counters);
+    ++counters.filter_failures;
+    return exact::insphere(a, b, c, d, e);
 }
 
 int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
                  PredicateCounters& counters) {
-    ++counters.calls;
-    const int sign = insphere_sign(a, b, c, d, e, counters);
+    ++counters.filter_failures;
+    const int sign = exact::insphere(a, b, c, d, e);
     if (sign != 0) return sign;
     ++counters.perturbations;
     const double* points[5] = {a, b, c, d, e};
     return insphere_perturbation_sign(points);
 }
+
+} // namespace slow_path
 
 // Works in the coordinate plane that drops the axis of the largest normal component of abc, where the
 // projection is best conditioned. On the plane of the points every linear function of the 3D coordinates

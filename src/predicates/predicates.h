@@ -9,10 +9,14 @@
 // finite, |coordinate| <= 1, and each coordinate zero or a multiple of 2^-200 (every double of magnitude
 // at least 2^-147 is). Then no exact intermediate product overflows or underflows; the filters are sound
 // for any finite input of moderate size, but the exact fallback is only guaranteed under this condition.
-// The fast paths are out of line: inlining them into callers measured no faster.
+// orient3d, insphere_exact and insphere_sos are inline: the filter (filters.h) decides almost every call,
+// and the Delaunay engine's conflict tests and walk steps measured faster with it in their loops. What
+// follows the filter (exact arithmetic, perturbation) stays out of line.
 #pragma once
 
 #include <stdint.h>
+
+#include "predicates/filters.h"
 
 namespace dbrg {
 
@@ -27,14 +31,14 @@ struct PredicateCounters {
 // Sign of the volume of tetrahedron (a, b, c, d): +1 when d lies below the plane through a, b, c,
 // "below" being the side from which a, b, c appear clockwise; -1 above; 0 when the four are coplanar.
 // Equal to the sign of det[a-d; b-d; c-d] (Shewchuk's convention). Exact.
-int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters);
+inline int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters);
 
 // Exact sign of insphere(a, b, c, d, e), the determinant with rows (p - e, |p - e|^2) for p = a, b, c, d:
 // +1 when e lies inside the sphere through a, b, c, d and orient3d(a, b, c, d) > 0 (the sign flips when
 // the tetrahedron is negatively oriented); 0 when the five points are cospherical. When a, b, c, d are
 // coplanar it is still the exact sign of that determinant, which then does not tell inside from outside.
-int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
-                   PredicateCounters& counters);
+inline int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
+                          PredicateCounters& counters);
 
 // As insphere_exact, but never 0 when orient3d(a, b, c, d) != 0: cospherical configurations are
 // resolved by raising each point's lifted coordinate |p|^2 by eps^(k+1), eps infinitesimal, with k the
@@ -42,8 +46,8 @@ int insphere_exact(const double* a, const double* b, const double* c, const doub
 // result depends only on coordinates, never on input positions. Antisymmetric in all five arguments.
 // 0 only when all five points are coplanar. Points must be pairwise distinct for the result to be
 // independent of argument order. Consistent with incircle3d_sos for hull faces.
-int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
-                 PredicateCounters& counters);
+inline int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
+                        PredicateCounters& counters);
 
 // For four exactly coplanar points (orient3d(a, b, c, d) == 0, a precondition): +1 when d lies inside
 // the circle through a, b, c, -1 outside, whatever the order of a, b, c; cocircular cases are resolved
@@ -56,5 +60,35 @@ int incircle3d_sos(const double* a, const double* b, const double* c, const doub
 // Lexicographic comparison of (x, y, z): negative, zero or positive. The order used by the perturbation
 // and by every tie-break in the library.
 int compare_points(const double* a, const double* b);
+
+// The out-of-line paths behind the inline predicates: each counts a filter failure and decides exactly.
+namespace slow_path {
+int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters);
+int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
+                   PredicateCounters& counters);
+int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
+                 PredicateCounters& counters);
+} // namespace slow_path
+
+inline int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters) {
+    ++counters.calls;
+    const int sign = filter::orient3d(a, b, c, d);
+    return sign != filter::UNDECIDED ? sign : slow_path::orient3d(a, b, c, d, counters);
+}
+
+inline int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
+                          PredicateCounters& counters) {
+    ++counters.calls;
+    const int sign = filter::insphere(a, b, c, d, e);
+    return sign != filter::UNDECIDED ? sign : slow_path::insphere_exact(a, b, c, d, e, counters);
+}
+
+// A sign the filter proves is never 0, so the perturbation is only ever needed on the slow path.
+inline int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
+                        PredicateCounters& counters) {
+    ++counters.calls;
+    const int sign = filter::insphere(a, b, c, d, e);
+    return sign != filter::UNDECIDED ? sign : slow_path::insphere_sos(a, b, c, d, e, counters);
+}
 
 } // namespace dbrg
