@@ -50,8 +50,12 @@ bool TokenStream::next(std::string_view& token) {
     return true;
 }
 
-bool parse_double(std::string_view token, double& value) {
-    // from_chars rejects a leading '+', which C's strtod and many writers produce.
+namespace {
+
+// The whole token as one number of type T, with an optional leading '+' (from_chars rejects it, but C's
+// strtod and many writers produce it).
+template <class T>
+bool parse_whole(std::string_view token, T& value) {
     if (!token.empty() && token.front() == '+') {
         token.remove_prefix(1);
         if (!token.empty() && token.front() == '-') return false;
@@ -63,16 +67,11 @@ bool parse_double(std::string_view token, double& value) {
     return result.ec == std::errc() && result.ptr == end;
 }
 
-bool parse_int64(std::string_view token, int64_t& value) {
-    if (!token.empty() && token.front() == '+') {
-        token.remove_prefix(1);
-        if (!token.empty() && token.front() == '-') return false;
-    }
-    if (token.empty()) return false;
-    const char* end = token.data() + token.size();
-    const auto result = std::from_chars(token.data(), end, value);
-    return result.ec == std::errc() && result.ptr == end;
-}
+} // namespace
+
+bool parse_double(std::string_view token, double& value) { return parse_whole(token, value); }
+
+bool parse_int64(std::string_view token, int64_t& value) { return parse_whole(token, value); }
 
 std::string_view strip_blanks(std::string_view text) {
     while (!text.empty() && is_blank(text.front())) text.remove_prefix(1);
