@@ -7,7 +7,8 @@
 #
 # Usage: fuzz/run_bounded.sh [SECONDS_PER_HARNESS] [HARNESS...]
 #   SECONDS_PER_HARNESS defaults to 60; HARNESS defaults to every directory in fuzz/corpus/.
-#   DBRG_FUZZ_BUILD names another build directory. Inputs the fuzzers find interesting accumulate in
+#   DBRG_FUZZ_BUILD names another build directory; DBRG_FUZZ_TIMEOUT the seconds one input may take
+#   (default 10; raise it on a machine busy with other work, where a slow input is not a hang). Inputs the fuzzers find interesting accumulate in
 #   <build>/corpus/<harness>/ across runs; the committed seeds are never modified.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift $(( $# > 0 ? 1 : 0 ))
 build=${DBRG_FUZZ_BUILD:-build-fuzz}
+timeout=${DBRG_FUZZ_TIMEOUT:-10}
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then
     for directory in fuzz/corpus/*/; do harnesses+=("$(basename "$directory")"); done
@@ -40,7 +42,7 @@ for harness in "${harnesses[@]}"; do
     dictionary=()
     [ -f "fuzz/dict/$harness.dict" ] && dictionary=("-dict=fuzz/dict/$harness.dict")
     if "$build/fuzz/$harness" "$work" "fuzz/corpus/$harness" "${dictionary[@]}" \
-        -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+        -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -print_final_stats=1 \
         -artifact_prefix="$build/artifacts/$harness-" >"$log" 2>&1; then
         runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
         echo "fuzz: $harness: ${runs:-?} inputs in ${seconds} s, no failure (corpus: $(ls "$work" | wc -l) inputs)"
