@@ -94,6 +94,54 @@ TEST_CASE("brio_hilbert_order is a permutation that depends on the points only")
     CHECK(std::equal(a.begin(), a.end(), b.begin()));
 }
 
+TEST_CASE("the insertion order is streamed on Hilbert-numbered points and equals the sorted one") {
+    for (const std::vector<double>& xyz : {random_cube(20000, 7), random_sphere(5000, 8), lattice(12, 0.0, 9)}) {
+        Context context(test_params());
+        ConditionedPoints points(context.memory);
+        REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
+        for (int numbered = 0; numbered < 2; ++numbered) {
+            if (numbered) REQUIRE(renumber_spatially(points, context) == DBRG_OK);
+            const uint32_t n = points.size();
+            // Lexicographic numbering is not along the curve; renumber_spatially's is.
+            CHECK(in_hilbert_order(points.coordinates.data(), n) == (numbered == 1));
+            Array<uint32_t> sorted(context.memory);
+            REQUIRE(brio_hilbert_order(points.coordinates.data(), n, context, sorted) == DBRG_OK);
+            BrioOrder order(context.memory);
+            REQUIRE(order.prepare(points.coordinates.data(), n, context) == DBRG_OK);
+            CHECK(order.streamed() == (numbered == 1));
+            uint32_t v = 0, i = 0;
+            bool same = true;
+            while (order.next(v)) same &= i < n && sorted[i++] == v;
+            CHECK(same);
+            CHECK(i == n);
+        }
+        // The tetrahedralization of the renumbered points is valid and has the same tetrahedra.
+        Tetrahedralization tets(context.memory);
+        REQUIRE(tets.build(points.coordinates.data(), points.size(), context) == DBRG_OK);
+        char message[256];
+        CHECK_MESSAGE(tets.validate(message, sizeof message), message);
+        Built lexicographic(xyz);
+        REQUIRE(lexicographic.status == DBRG_OK);
+        CHECK(tets.finite_tet_count() == lexicographic.tets.finite_tet_count());
+        std::set<std::array<double, 12>> ours, theirs;
+        auto corners = [](const Tetrahedralization& t, uint32_t s) {
+            std::array<std::array<double, 3>, 4> c;
+            for (uint32_t lv = 0; lv < 4; ++lv)
+                for (int k = 0; k < 3; ++k) c[lv][k] = t.point(t.tet_vertex(s, lv))[k];
+            std::sort(c.begin(), c.end());
+            std::array<double, 12> flat;
+            for (int j = 0; j < 12; ++j) flat[j] = c[j / 3][j % 3];
+            return flat;
+        };
+        for (uint32_t s = 0; s < tets.tet_slots(); ++s)
+            if (!tets.tet_is_free(s) && tets.tet_is_finite(s)) ours.insert(corners(tets, s));
+        const Tetrahedralization& other = lexicographic.tets;
+        for (uint32_t s = 0; s < other.tet_slots(); ++s)
+            if (!other.tet_is_free(s) && other.tet_is_finite(s)) theirs.insert(corners(other, s));
+        CHECK(ours == theirs);
+    }
+}
+
 TEST_CASE("random points in a cube") {
     check_valid(random_cube(3000, 2), 3000);
     Built b(random_cube(20000, 3));

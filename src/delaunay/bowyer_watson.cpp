@@ -27,11 +27,15 @@ constexpr uint32_t MAX_TET_SLOTS = 1u << 30;
 constexpr uint32_t NO_FACE = 4;
 constexpr uint32_t PROGRESS_INTERVAL = 4096;
 constexpr uint64_t WALK_SEED = 0xbb67ae8584caa73bull;
-// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35), of surface samples
-// usually fewer; the store is reserved for that many and then grows by a sixteenth at a time, which
-// keeps the unused capacity, and so the peak, low.
-constexpr double EXPECTED_TETS_PER_POINT = 6.8;
+// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35), of the real meshes'
+// vertices 5.8 to 7, of dense samples of closed surfaces up to three times as many. The store is reserved
+// for the low end of that; when it is full, the tetrahedra per point inserted so far (BRIO spreads every
+// round over the whole set, so that ratio hardly changes as points come in) project the final count, and
+// the store grows to that plus a margin on the part still to come, at least a sixteenth. So the unused
+// capacity at the end, and with it the peak, stays within a few percent of the store.
+constexpr double EXPECTED_TETS_PER_POINT = 6.0;
 constexpr size_t GROWTH_DIVISOR = 16;
+constexpr double PROJECTION_MARGIN = 1.05;
 
 // Face lf of a tetrahedron as three local vertices in the order that makes (face, lf) an even
 // permutation of (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.
@@ -89,22 +93,24 @@ uint32_t hash_edge(uint64_t edge) {
 class DelaunayBuilder {
 public:
     DelaunayBuilder(Tetrahedralization& out, Context& context)
-        : out_(out), context_(context), memory_(context.memory), cavity_(memory_), outside_(memory_),
-          boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
+        : out_(out), context_(context), memory_(context.memory), pending_(memory_), cavity_(memory_),
+          outside_(memory_), boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
           filed_(memory_) {}
 
-    // Inserts points order[0], ..., order[count - 1] of `points` in that order (the four first affinely
+    // Inserts the `count` points of `points` in the order `order` gives (the four first affinely
     // independent ones first). Vertex ids are indices into `points`.
-    dbrg_status run(const double* points, const uint32_t* order, uint32_t count);
+    dbrg_status run(const double* points, BrioOrder& order, uint32_t count);
 
 private:
-    dbrg_status start(uint32_t n, uint32_t& c, uint32_t& d);
-    dbrg_status insert(uint32_t rank);
+    dbrg_status start();
+    bool next_vertex(uint32_t& v);
+    // Inserts v; `next` is the point inserted after it, or null.
+    dbrg_status insert(uint32_t v, const double* next);
     dbrg_status locate(const double* p, uint32_t& found);
     bool in_conflict(const uint32_t* tet, const double* p);
     dbrg_status take_slot(uint32_t& slot);
     dbrg_status link_new_tets();
-    void choose_hint(uint32_t rank);
+    void choose_hint(const double* next);
     void refresh_pointers() {
         vertex_ = out_.vertices_.data();
         adjacency_ = out_.adjacency_.data();
@@ -125,10 +131,14 @@ private:
     uint32_t* vertex_ = nullptr;     // out_.vertices_.data(), refreshed whenever the store grows
     uint32_t* adjacency_ = nullptr;  // out_.adjacency_.data()
     uint32_t free_head_ = NO_TET;    // free slots, chained through adjacency entry 0
-    const uint32_t* order_ = nullptr;  // the insertion order: the vertex id of each rank
-    uint32_t count_ = 0;               // points to insert
+    BrioOrder* order_ = nullptr;     // the insertion order
+    uint32_t count_ = 0;             // points to insert
+    uint32_t inserted_ = 0;          // points inserted so far
     uint32_t hint_ = 0;              // a tetrahedron made by the last insertion: the next walk starts there
     uint64_t random_ = WALK_SEED;
+
+    Array<uint32_t> pending_;  // points the order gave before the first tetrahedron was complete
+    size_t pending_next_ = 0;
 
     // Scratch space of one insertion.
     Array<uint32_t> cavity_;
@@ -155,6 +165,11 @@ dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
     }
     if (vertices.size() == vertices.capacity()) {
         size_t grown = slots + slots / GROWTH_DIVISOR + 64;
+        if (inserted_ > 0 && inserted_ < count_) {
+            const double to_come = double(slots) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN;
+            const size_t projected = slots + static_cast<size_t>(to_come) + 64;
+            grown = projected > grown ? projected : grown;
+        }
         grown = grown > MAX_TET_SLOTS ? MAX_TET_SLOTS : grown;
         if (!vertices.reserve(4 * grown) || !adjacency.reserve(4 * grown)) return context_.fail_out_of_memory();
     }
@@ -222,27 +237,34 @@ dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
     return context_.fail(DBRG_ERR_INTERNAL, "point location did not terminate (a bug in dbrg)");
 }
 
-dbrg_status DelaunayBuilder::start(uint32_t n, uint32_t& c, uint32_t& d) {
+dbrg_status DelaunayBuilder::start() {
     PredicateCounters& counters = out_.counters;
     // The first four affinely independent points of the order: the first two, the next one off their
-    // line, the next one off their plane.
-    c = 2;
-    const double* p0 = point(order_[0]);
-    const double* p1 = point(order_[1]);
-    while (c < n && points_collinear(p0, p1, point(order_[c]), counters)) ++c;
-    d = 2;
-    if (c < n) {
-        while (d < n && (d == c || orient3d(p0, p1, point(order_[c]), point(order_[d]), counters) == 0)) ++d;
+    // line, the next one off their plane. The points passed over wait in pending_, in order.
+    uint32_t v[4];
+    if (!order_->next(v[0]) || !order_->next(v[1])) {
+        return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "fewer than 2 points to insert");
     }
-    if (c >= n || d >= n) {
-        return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are %s", n, c >= n ? "collinear" : "coplanar");
+    const double* p0 = point(v[0]);
+    const double* p1 = point(v[1]);
+    bool found = false;
+    while (!found && order_->next(v[2])) {
+        found = !points_collinear(p0, p1, point(v[2]), counters);
+        if (!found && !pending_.push_back(v[2])) return context_.fail_out_of_memory();
     }
-    uint32_t v[4] = {order_[0], order_[1], order_[c], order_[d]};
+    if (!found) return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are collinear", count_);
+    found = false;
+    while (!found && order_->next(v[3])) {
+        found = orient3d(p0, p1, point(v[2]), point(v[3]), counters) != 0;
+        if (!found && !pending_.push_back(v[3])) return context_.fail_out_of_memory();
+    }
+    if (!found) return context_.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u points are coplanar", count_);
     if (orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3]), counters) < 0) {
-        v[0] = order_[1];
-        v[1] = order_[0];
+        const uint32_t swap = v[0];
+        v[0] = v[1];
+        v[1] = swap;
     }
-    const size_t reserve_slots = static_cast<size_t>(EXPECTED_TETS_PER_POINT * n) + 64;
+    const size_t reserve_slots = static_cast<size_t>(EXPECTED_TETS_PER_POINT * count_) + 64;
     if (!out_.vertices_.reserve(4 * reserve_slots) || !out_.adjacency_.reserve(4 * reserve_slots) ||
         !out_.vertices_.resize(20) || !out_.adjacency_.resize(20)) {
         return context_.fail_out_of_memory();
@@ -283,8 +305,15 @@ dbrg_status DelaunayBuilder::start(uint32_t n, uint32_t& c, uint32_t& d) {
     return DBRG_OK;
 }
 
-dbrg_status DelaunayBuilder::insert(uint32_t rank) {
-    const uint32_t v = order_[rank];
+bool DelaunayBuilder::next_vertex(uint32_t& v) {
+    if (pending_next_ < pending_.size()) {
+        v = pending_[pending_next_++];
+        return true;
+    }
+    return order_->next(v);
+}
+
+dbrg_status DelaunayBuilder::insert(uint32_t v, const double* next) {
     const double* p = point(v);
     uint32_t first;
     DBRG_PROPAGATE(locate(p, first));
@@ -363,18 +392,17 @@ dbrg_status DelaunayBuilder::insert(uint32_t rank) {
         adjacency_[4 * size_t(made.outer >> 2) + (made.outer & 3)] = s << 2 | made.face;
         finite_added += made.vertex[3] != INFINITE_VERTEX;
     }
-    choose_hint(rank);
+    choose_hint(next);
     out_.finite_tets_ += finite_added - finite_removed;
     for (size_t i = 0; i < outside_.size(); ++i) vertex_[4 * size_t(outside_[i]) + 1] &= VERTEX_ID_MASK;
     return link_new_tets();
 }
 
-void DelaunayBuilder::choose_hint(uint32_t rank) {
+void DelaunayBuilder::choose_hint(const double* q) {
     // Any start is correct, but on surface samples the tetrahedra around v are long needles, and a walk
     // from an arbitrary one of them wanders; the one whose centroid is nearest to the next point in
     // insertion order cuts the walk to a fraction. Plain floating point: only speed depends on it.
-    if (rank + 1 >= count_) return;
-    const double* q = point(order_[rank + 1]);
+    if (!q) return;
     double best = HUGE_VAL;
     for (size_t i = 0; i < new_tets_.size(); ++i) {
         const NewTet& made = new_tets_[i];
@@ -439,16 +467,22 @@ dbrg_status DelaunayBuilder::link_new_tets() {
     return DBRG_OK;
 }
 
-dbrg_status DelaunayBuilder::run(const double* points, const uint32_t* order, uint32_t n) {
+dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_t n) {
     points_ = points;
-    order_ = order;
+    order_ = &order;
     count_ = n;
-    uint32_t c, d;
-    DBRG_PROPAGATE(start(n, c, d));
-    for (uint32_t i = 2; i < n; ++i) {
-        if (i % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(i) / n));
-        if (i != c && i != d) DBRG_PROPAGATE(insert(i));
+    DBRG_PROPAGATE(start());
+    inserted_ = 4;
+    uint32_t v = 0, next = 0;
+    bool more = next_vertex(next);
+    while (more) {
+        v = next;
+        more = next_vertex(next);
+        if (inserted_ % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(inserted_) / n));
+        DBRG_PROPAGATE(insert(v, more ? point(next) : nullptr));
+        ++inserted_;
     }
+    pending_.release();
     return context_.report(DBRG_STAGE_DELAUNAY, 1.0);
 }
 
@@ -466,15 +500,16 @@ dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Cont
     counters = PredicateCounters();
 
     const double sort_start = seconds_now();
-    Array<uint32_t> order(context.memory);
-    dbrg_status status = brio_hilbert_order(points, count, context, order);
     // The engine reads the caller's points in place, with the caller's vertex ids: the pipeline numbers
     // them along a Hilbert curve (renumber_spatially), so points close in space are already close in
-    // memory, and a copy in insertion order would cost 24 bytes per point at the peak.
+    // memory (a copy in insertion order would cost 24 bytes per point at the peak), and the insertion
+    // order is then streamed instead of sorted and stored.
+    BrioOrder order(context.memory);
+    dbrg_status status = order.prepare(points, count, context);
     const double insert_start = seconds_now();
     if (status == DBRG_OK) {
         DelaunayBuilder builder(*this, context);
-        status = builder.run(points, order.data(), count);
+        status = builder.run(points, order, count);
     }
     order.release();
     if (status == DBRG_OK) {

@@ -119,29 +119,62 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& co
 
     const HilbertGrid grid(points, count);
 
-    // Rounds: the last one takes each point with probability 1 - 1/ROUND_RATIO, the one before it each
-    // remaining point with the same probability, and so on; the first takes the rest. The draw for a
-    // point comes from a generator seeded with its index, so the rounds depend on nothing but the
-    // points, and one sort by (round, Hilbert index) orders everything.
-    int rounds = 1;
-    for (uint64_t size = count; size / ROUND_RATIO >= MIN_ROUND && rounds < MAX_ROUNDS; size /= ROUND_RATIO) ++rounds;
+    // One sort by (round, Hilbert index) orders everything.
+    const int rounds = BrioOrder::round_count(count);
     Array<KeyedIndex> keyed(context.memory);
     if (!keyed.resize(count)) return context.fail_out_of_memory();
     for (uint32_t i = 0; i < count; ++i) {
-        uint64_t state = SHUFFLE_SEED ^ (uint64_t(i) * 0xd1b54a32d192ed03ull);
-        uint64_t draw = next_random(state);
-        int earlier = 0;  // how many rounds before the last one
-        while (earlier + 1 < rounds && draw % ROUND_RATIO == 0) {
-            ++earlier;
-            draw /= ROUND_RATIO;
-        }
-        const uint64_t round = uint64_t(rounds - 1 - earlier);
+        const uint64_t round = uint64_t(BrioOrder::round_of(i, rounds));
         keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | grid.key(points + 3 * size_t(i)), i};
     }
     DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.5));
     sort_keyed(keyed);
     for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
     return context.report(DBRG_STAGE_SORT, 1.0);
+}
+
+int BrioOrder::round_count(uint32_t count) {
+    int rounds = 1;
+    for (uint64_t size = count; size / ROUND_RATIO >= MIN_ROUND && rounds < MAX_ROUNDS; size /= ROUND_RATIO) ++rounds;
+    return rounds;
+}
+
+// Rounds: the last one takes each point with probability 1 - 1/ROUND_RATIO, the one before it each
+// remaining point with the same probability, and so on; the first takes the rest. The draw for a point
+// comes from a generator seeded with its index, so the rounds depend on nothing but the points.
+int BrioOrder::round_of(uint32_t index, int rounds) {
+    uint64_t state = SHUFFLE_SEED ^ (uint64_t(index) * 0xd1b54a32d192ed03ull);
+    uint64_t draw = next_random(state);
+    int earlier = 0;  // how many rounds before the last one
+    while (earlier + 1 < rounds && draw % ROUND_RATIO == 0) {
+        ++earlier;
+        draw /= ROUND_RATIO;
+    }
+    return rounds - 1 - earlier;
+}
+
+dbrg_status BrioOrder::prepare(const double* points, uint32_t count, Context& context) {
+    order_.release();
+    count_ = count;
+    position_ = 0;
+    round_ = 0;
+    rounds_ = round_count(count);
+    streamed_ = in_hilbert_order(points, count);
+    if (!streamed_) return brio_hilbert_order(points, count, context, order_);
+    DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.0));
+    return context.report(DBRG_STAGE_SORT, 1.0);
+}
+
+bool in_hilbert_order(const double* points, uint32_t count) {
+    if (count == 0) return true;
+    const HilbertGrid grid(points, count);
+    uint64_t previous = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint64_t key = grid.key(points + 3 * size_t(i));
+        if (key < previous) return false;
+        previous = key;
+    }
+    return true;
 }
 
 bool hilbert_order(const double* points, uint32_t count, Array<uint32_t>& order) {

@@ -24,6 +24,63 @@ uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits);
 // DBRG_STAGE_SORT progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
 dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& context, Array<uint32_t>& order);
 
+// The insertion order of brio_hilbert_order, produced one point at a time. When the points are already
+// numbered along the Hilbert curve over their bounding box (as renumber_spatially leaves them), each round
+// in Hilbert order is that round's points in index order, and the order is streamed without any memory
+// and without sorting; otherwise it is computed by brio_hilbert_order and read from its array (4 bytes
+// per point, 20 while sorting). Either way the sequence is the same.
+class BrioOrder {
+public:
+    explicit BrioOrder(Memory& memory) : order_(memory) {}
+
+    // Reports DBRG_STAGE_SORT progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
+    dbrg_status prepare(const double* points, uint32_t count, Context& context);
+
+    // The next point of the order into v; false once all have been given.
+    bool next(uint32_t& v) {
+        if (!streamed_) {
+            if (position_ == order_.size()) return false;
+            v = order_[position_++];
+            return true;
+        }
+        for (;;) {
+            while (position_ < count_) {
+                const uint32_t i = position_++;
+                if (brio_round(i) == round_) {
+                    v = i;
+                    return true;
+                }
+            }
+            if (++round_ >= rounds_) return false;
+            position_ = 0;
+        }
+    }
+
+    // Gives the array's memory back.
+    void release() { order_.release(); }
+
+    // Whether the order is streamed (no array).
+    bool streamed() const { return streamed_; }
+
+    // The number of rounds for `count` points, and the round of point `index` among them.
+    static int round_count(uint32_t count);
+    static int round_of(uint32_t index, int rounds);
+
+private:
+    int brio_round(uint32_t index) const { return rounds_ == 1 ? 0 : round_of(index, rounds_); }
+
+    Array<uint32_t> order_;
+    bool streamed_ = false;
+    uint32_t count_ = 0;
+    uint32_t position_ = 0;
+    int rounds_ = 1;
+    int round_ = 0;
+};
+
+// Whether the points are numbered along the Hilbert curve over their bounding box: their curve positions
+// (as hilbert_order computes them) never decrease.
+bool in_hilbert_order(const double* points, uint32_t count);
+
 // Fills `order` with the permutation of 0 .. count - 1 along a Hilbert curve over the points' bounding box,
 // ties by index. Returns false on allocation failure.
 bool hilbert_order(const double* points, uint32_t count, Array<uint32_t>& order);
