@@ -193,7 +193,8 @@ TEST_CASE("the closed models of the shared data come out closed, and the bunny k
     const struct {
         const char* file;
         int genus;
-    } closed[] = {{"spot.obj", 0}, {"fandisk.obj", 0}, {"homer.off", 0}, {"rocker-arm.off", 1}, {"cow.ply", -1}};
+    } closed[] = {{"spot.obj", 0}, {"fandisk.obj", 0}, {"homer.off", 0}, {"rocker-arm.off", 1}, {"cow.ply", -1},
+                  {"cheburashka.off", -1}};
     for (const auto& model : closed) {
         CAPTURE(std::string(model.file));
         io::MeshData mesh;

@@ -71,6 +71,11 @@ dbrg_status HoleFiller::fill() {
         const uint32_t start = surface_.find_halfedge(u, v);
         if (start == NO_HALFEDGE || !surface_.is_boundary(start)) continue;  // filled with another hole already
         if (!collect_hole(start, loop)) continue;
+        // A long loop that some edges call a border (is_hole) is filled over its own vertices only: removing
+        // grown faces to fill it would trade surface the data support for a closure they only half support.
+        uint32_t open_edges = 0;
+        for (uint32_t h : loop) open_edges += is_open_boundary(h) ? 1 : 0;
+        const uint32_t enlargements = open_edges > 0 && loop.size() > open_loop_limit() ? 0 : MAX_ENLARGEMENTS;
         // An undone attempt restores faces under new ids: find the hole again by its first edge.
         bool filled = false;
         for (double fold_limit : {context_.params.sliver_angle, LAST_RESORT_FOLD_ANGLE}) {
@@ -78,7 +83,7 @@ dbrg_status HoleFiller::fill() {
             cos_fold_limit_ = cos(fold_limit);
             const uint32_t edge = surface_.find_halfedge(u, v);
             if (edge == NO_HALFEDGE || !surface_.is_boundary(edge)) break;
-            DBRG_PROPAGATE(fill_hole(edge, 0, journal, filled));
+            DBRG_PROPAGATE(fill_hole(edge, enlargements, journal, filled));
             if (!filled) DBRG_PROPAGATE(undo(journal, 0, 0));
         }
         if (!filled) continue;
@@ -103,17 +108,17 @@ bool HoleFiller::is_open_boundary(uint32_t h) const {
 
 bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
     loop.clear();
-    bool open = false;
+    uint32_t open_edges = 0;
     uint32_t h = start;
     do {
         if (loop.size() >= context_.params.max_hole_edges || !loop.push_back(h)) return false;
-        open = open || is_open_boundary(h);
+        open_edges += is_open_boundary(h) ? 1 : 0;
         h = surface_.fan_exit(h);
     } while (h != start);
-    return !open || loop.size() <= open_loop_limit();
+    return is_hole(static_cast<uint32_t>(loop.size()), open_edges);
 }
 
-// Boundary loops with no open-surface edge, of any length.
+// Boundary loops that are holes (is_hole), of any length.
 uint32_t HoleFiller::count_holes() const {
     Array<uint8_t> seen(context_.memory);
     const uint32_t halfedges = 3 * surface_.face_count();
@@ -121,20 +126,19 @@ uint32_t HoleFiller::count_holes() const {
     uint32_t holes = 0;
     for (uint32_t h = 0; h < halfedges; ++h) {
         if (!surface_.is_boundary(h) || seen[h]) continue;
-        bool open = false;
-        uint32_t length = 0, g = h;
+        uint32_t length = 0, open_edges = 0, g = h;
         do {
             seen[g] = 1;
             ++length;
-            open = open || is_open_boundary(g);
+            open_edges += is_open_boundary(g) ? 1 : 0;
             g = surface_.fan_exit(g);
         } while (g != h);
-        holes += !open || length <= open_loop_limit() ? 1 : 0;
+        holes += is_hole(length, open_edges) ? 1 : 0;
     }
     return holes;
 }
 
-dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t depth, Journal& journal, bool& filled) {
+dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, Journal& journal, bool& filled) {
     filled = false;
     Array<uint32_t> loop(context_.memory);
     Array<uint32_t> corners(context_.memory);
@@ -144,7 +148,7 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t depth, Journal& journ
 
     const size_t added_before = journal.added.size();
     DBRG_PROPAGATE(clip_ears(corners, journal, filled));
-    if (filled || depth == MAX_ENLARGEMENTS) return DBRG_OK;
+    if (filled || enlargements == 0) return DBRG_OK;
 
     // §5: an ear is invalid, so take this attempt back, remove the hole's boundary triangles too, and fill
     // the larger hole that leaves instead.
@@ -154,7 +158,7 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t depth, Journal& journ
     for (uint32_t s : new_starts) {
         if (surface_.face_removed(Surface::face_of(s)) || !surface_.is_boundary(s)) continue;  // filled with another
         bool sub_filled = false;
-        DBRG_PROPAGATE(fill_hole(s, depth + 1, journal, sub_filled));
+        DBRG_PROPAGATE(fill_hole(s, enlargements - 1, journal, sub_filled));
         if (!sub_filled) return DBRG_OK;
     }
     filled = true;

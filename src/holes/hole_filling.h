@@ -42,11 +42,22 @@ private:
     // A loop that the open-surface test made but that is this short is a hole all the same: a real border
     // is long, while a short loop marks a jump in sampling density (as in CAD tessellations).
     uint32_t open_loop_limit() const { return context_.params.max_hole_edges / 4; }
+    // Whether a boundary loop of `length` edges, `open_edges` of them left by the open-surface test (§4),
+    // is a hole (§5) rather than a real border. Each edge says why growing stopped there: its candidate
+    // was refused as too large (§4), or every candidate was invalid (§3.2.1); a loop is one thing or the
+    // other, so its edges vote. At a real border nearly every edge sees only large triangles beyond it.
+    // Where a closed surface comes closer to itself than the sample spacing (a deep crease, a neck), a
+    // hole's edges see triangles across the gap, and some are large enough for §4: a minority, so one
+    // such edge no longer makes the whole loop a border.
+    bool is_hole(uint32_t length, uint32_t open_edges) const {
+        return 2 * open_edges <= length || length <= open_loop_limit();
+    }
     // The boundary half-edges of the loop through `start`, in order; false when it is longer than
-    // max_hole_edges, or when it is a long border made by the open-surface test.
+    // max_hole_edges, or when it is a border (is_hole).
     bool collect_hole(uint32_t start, Array<uint32_t>& loop) const;
     uint32_t count_holes() const;
-    dbrg_status fill_hole(uint32_t start, uint32_t depth, Journal& journal, bool& filled);
+    // Fills the hole through `start`, enlarging it (§5) at most `enlargements` more times.
+    dbrg_status fill_hole(uint32_t start, uint32_t enlargements, Journal& journal, bool& filled);
     dbrg_status clip_ears(Array<uint32_t>& corners, Journal& journal, bool& filled);
     bool ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, bool closes_hole) const;
     dbrg_status enlarge(const Array<uint32_t>& loop, Journal& journal, Array<uint32_t>& new_starts);
