@@ -87,26 +87,24 @@ void sort_keyed(Array<KeyedIndex>& keyed) {
 uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
     // Skilling's method: turn the axes into the "transposed" Hilbert index level by level from the
     // top, undoing the rotations and reflections of the sub-cubes, then Gray-code across the axes.
+    // Without branches: the bits decide through masks, since they are as likely set as not.
     uint32_t a[3] = {x, y, z};
-    const uint32_t top = 1u << (bits - 1);
-    for (uint32_t q = top; q > 1; q >>= 1) {
-        const uint32_t low = q - 1;
+    const int top = bits - 1;
+    for (int level = top; level > 0; --level) {
+        const uint32_t low = (1u << level) - 1;
         for (int i = 0; i < 3; ++i) {
-            if (a[i] & q) {
-                a[0] ^= low;  // reflect
-            } else {
-                const uint32_t swap = (a[0] ^ a[i]) & low;  // exchange the low bits of axis 0 and axis i
-                a[0] ^= swap;
-                a[i] ^= swap;
-            }
+            const uint32_t set = 0u - ((a[i] >> level) & 1u);  // all ones when bit `level` of axis i is set
+            // Set: reflect the low bits of axis 0. Clear: exchange the low bits of axis 0 and axis i
+            // (nothing for i = 0).
+            const uint32_t swap = (a[0] ^ a[i]) & low & ~set;
+            a[0] ^= (low & set) | swap;
+            a[i] ^= swap;
         }
     }
     a[1] ^= a[0];
     a[2] ^= a[1];
     uint32_t flip = 0;
-    for (uint32_t q = top; q > 1; q >>= 1) {
-        if (a[2] & q) flip ^= q - 1;
-    }
+    for (int level = top; level > 0; --level) flip ^= (0u - ((a[2] >> level) & 1u)) & ((1u << level) - 1);
     for (int i = 0; i < 3; ++i) a[i] ^= flip;
     // The transposed index: level b of the curve is bit b of each axis, axis 0 most significant.
     return spread_bits(a[0]) << 2 | spread_bits(a[1]) << 1 | spread_bits(a[2]);
