@@ -162,8 +162,9 @@ typedef struct dbrg_params {
     dbrg_boundary_mean boundary_mean;
     /* Non-zero: fill holes left by rejected candidates (paper section 5). Default 1. */
     uint32_t fill_holes;
-    /* Holes with more boundary edges than this stay open. At least 3; default 64. A loop made by the
-     * open-surface test counts as a hole only up to a quarter of this length: a real border is long. */
+    /* Holes with more boundary edges than this stay open. At least 3; default 64. A loop most of whose
+     * edges the open-surface test made is a border, not a hole, unless it is at most a quarter of this
+     * length: a real border is long. */
     uint32_t max_hole_edges;
     /* How many surface components may be grown from separate seeds (a scan of several objects).
      * At least 1. */
