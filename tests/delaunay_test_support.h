@@ -10,20 +10,13 @@
 #include <vector>
 
 #include "core/context.h"
+#include "core/splitmix64.h"
 
 namespace dbrg_test {
 
-// A small deterministic generator (splitmix64) so that every run sees the same points.
-struct Random {
-    uint64_t state;
-    explicit Random(uint64_t seed) : state(seed) {}
-    uint64_t next() {
-        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return (next() >> 11) * (1.0 / 9007199254740992.0); }  // [0, 1)
+// A deterministic generator so that every run sees the same points.
+struct Random : dbrg::SplitMix64 {
+    using SplitMix64::SplitMix64;
     double normal() {
         const double u = uniform() + 1e-300, v = uniform();
         return sqrt(-2 * log(u)) * cos(6.283185307179586 * v);

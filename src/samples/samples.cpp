@@ -6,26 +6,22 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/splitmix64.h"
+
 namespace dbrg::samples {
 namespace {
 
 const double PI = 3.14159265358979323846;
 
-// splitmix64: small, fast, and the same on every platform.
 class Random {
 public:
-    explicit Random(uint64_t seed) : state_(seed) {}
-    uint64_t next() {
-        uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
+    explicit Random(uint64_t seed) : generator_(seed) {}
+    uint64_t next() { return generator_.next(); }
     // Uniform in [lo, hi).
-    double uniform(double lo = 0, double hi = 1) { return lo + (hi - lo) * double(next() >> 11) * 0x1.0p-53; }
+    double uniform(double lo = 0, double hi = 1) { return lo + (hi - lo) * generator_.uniform(); }
 
 private:
-    uint64_t state_;
+    SplitMix64 generator_;
 };
 
 struct Point {
