@@ -54,6 +54,26 @@ public:
     bool empty() const { return heap_.empty(); }
     size_t size() const { return heap_.size(); }
 
+    // True when the next push has to grow the heap's memory.
+    bool full() const { return heap_.size() == heap_.capacity(); }
+    size_t capacity() const { return heap_.capacity(); }
+    // Makes room for `capacity` entries. Returns false on allocation failure.
+    bool reserve(size_t capacity) { return heap_.reserve(capacity); }
+    // Gives the heap's memory back; the queue must be empty.
+    void release() { heap_.release(); }
+
+    // Drops the entries for which stale(entry) is true and restores the heap order in linear time. Pops
+    // return the remaining entries in the same order as before: more_credible is a total order.
+    template <class Stale>
+    void remove_if(Stale&& stale) {
+        size_t kept = 0;
+        for (size_t i = 0; i < heap_.size(); ++i) {
+            if (!stale(heap_[i])) heap_[kept++] = heap_[i];
+        }
+        heap_.shrink(kept);
+        for (size_t i = kept / 2; i-- > 0;) sift_down(i);
+    }
+
     // Returns false on allocation failure.
     bool push(const Candidate& candidate) {
         if (!heap_.push_back(candidate)) return false;
@@ -71,8 +91,13 @@ public:
         const Candidate top = heap_[0];
         heap_[0] = heap_.back();
         heap_.pop_back();
+        sift_down(0);
+        return top;
+    }
+
+private:
+    void sift_down(size_t i) {
         const size_t n = heap_.size();
-        size_t i = 0;
         for (;;) {
             const size_t left = 2 * i + 1, right = left + 1;
             size_t best = i;
@@ -82,10 +107,8 @@ public:
             swap_entries(i, best);
             i = best;
         }
-        return top;
     }
 
-private:
     void swap_entries(size_t i, size_t j) {
         const Candidate t = heap_[i];
         heap_[i] = heap_[j];

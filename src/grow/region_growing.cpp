@@ -16,6 +16,14 @@
 namespace dbrg {
 namespace {
 
+// After dropping stale entries from a full container: grow it only when they freed less than a quarter
+// of it, so that a dropping pass (linear in the size) is paid for by at least that many pushes.
+template <class Container>
+bool reserve_after_compaction(Container& container) {
+    const size_t capacity = container.capacity();
+    return container.size() <= capacity - capacity / 4 || container.reserve(capacity < 8 ? 8 : 2 * capacity);
+}
+
 // A component grown from a later seed must reach this many faces to count as a second object; fewer are
 // stray points (noise, outliers), removed at the end if they stay apart.
 const uint32_t MIN_SEEDED_COMPONENT_FACES = 16;
@@ -73,6 +81,7 @@ dbrg_status RegionGrower::grow() {
         // earlier component: growing can attach to any boundary vertex.)
         if (components_ == 0 || surface_.live_face_count() >= faces_before + MIN_SEEDED_COMPONENT_FACES) ++components_;
     }
+    release_queues();
     DBRG_PROPAGATE(remove_islands());
     context_.stats.components = components_;  // the output stage recounts after hole filling
     return context_.report(DBRG_STAGE_GROW, 1.0);
@@ -116,7 +125,7 @@ dbrg_status RegionGrower::grow_component() {
         DBRG_PROPAGATE(drain_queue());
         if (postponed_.empty()) return DBRG_OK;
         for (const Candidate& c : postponed_) {
-            if (!queue_.push(c)) return context_.fail_out_of_memory();
+            if (!enqueue(c)) return context_.fail_out_of_memory();
         }
         postponed_.clear();
     }
@@ -142,7 +151,7 @@ dbrg_status RegionGrower::drain_queue() {
         if (smoothness < c.smoothness) {
             // S changed around it since it was queued and it is less credible now: queue it again.
             c.smoothness = smoothness;
-            if (!queue_.push(c)) return context_.fail_out_of_memory();
+            if (!enqueue(c)) return context_.fail_out_of_memory();
             continue;
         }
         if (!passes_boundary_test(c)) {
@@ -165,7 +174,29 @@ dbrg_status RegionGrower::drain_queue() {
 
 dbrg_status RegionGrower::postpone(Candidate c) {
     c.postponed = 1;
+    if (postponed_.size() == postponed_.capacity()) {
+        // Most set-aside candidates go stale as the fronts move on: drop those before growing the list.
+        size_t kept = 0;
+        for (const Candidate& p : postponed_) {
+            if (surface_.is_boundary(p.halfedge)) postponed_[kept++] = p;
+        }
+        postponed_.shrink(kept);
+        if (!reserve_after_compaction(postponed_)) return context_.fail_out_of_memory();
+    }
     return postponed_.push_back(c) ? DBRG_OK : context_.fail_out_of_memory();
+}
+
+// Queues a candidate. Entries whose half-edge has been covered by a face since stay in the heap until
+// they come up (they are skipped then); before the heap's memory grows, they are dropped instead, so the
+// heap holds about the fronts' candidates rather than every candidate ever computed. Faces are only
+// removed while the queue is empty, so a covered half-edge stays covered as long as its entries exist:
+// the candidates that come up, and their order, are the same as without dropping.
+bool RegionGrower::enqueue(const Candidate& c) {
+    if (queue_.full()) {
+        queue_.remove_if([&](const Candidate& entry) { return !surface_.is_boundary(entry.halfedge); });
+        if (!reserve_after_compaction(queue_)) return false;
+    }
+    return queue_.push(c);
 }
 
 dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
@@ -281,7 +312,7 @@ dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after)
     examine(c, c.smoothness);
     c.version = versions_[halfedge];
     c.postponed = 0;
-    return queue_.push(c) ? DBRG_OK : context_.fail_out_of_memory();
+    return enqueue(c) ? DBRG_OK : context_.fail_out_of_memory();
 }
 
 // Inserts face (a, b, c) into S and queues candidates for its new boundary edges (§3.2.2).
@@ -311,10 +342,17 @@ dbrg_status RegionGrower::regrow_holes() {
         if (surface_.is_boundary(h) && cause_[h] == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
     }
     DBRG_PROPAGATE(grow_component());
+    release_queues();
     DBRG_PROPAGATE(resolve_pinches());
     const uint32_t after = surface_.live_face_count();
     context_.stats.hole_triangles_delaunay += after > before ? after - before : 0;
     return DBRG_OK;
+}
+
+// Growing has drained both: give their memory back before the next stage allocates.
+void RegionGrower::release_queues() {
+    queue_.release();
+    postponed_.release();
 }
 
 // Cutting pinches can leave a few faces joined to nothing else: an island is no object of its own.

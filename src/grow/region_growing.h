@@ -59,6 +59,8 @@ private:
     dbrg_status propose(uint32_t halfedge, const CandidateRank* after);
     dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
     dbrg_status postpone(Candidate candidate);
+    bool enqueue(const Candidate& candidate);
+    void release_queues();
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
     dbrg_status resolve_pinches();
     dbrg_status remove_islands();
