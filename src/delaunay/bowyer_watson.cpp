@@ -7,6 +7,9 @@
 // randomized visibility walk.
 #include <math.h>
 #include <string.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "core/status.h"
 #include "delaunay/affine_checks.h"
@@ -80,6 +83,21 @@ inline void prefetch(const void* address) {
     __builtin_prefetch(address);
 #else
     (void)address;
+#endif
+}
+
+// Asks the kernel to map the pages inside [data, data + bytes) now, in one call, instead of one page
+// fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
+// written in full anyway. Advice only: where unsupported, nothing changes.
+void populate(void* data, size_t bytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    constexpr uintptr_t PAGE = 4096;
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + PAGE - 1) & ~(PAGE - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(PAGE - 1);
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#else
+    (void)data;
+    (void)bytes;
 #endif
 }
 
@@ -172,6 +190,8 @@ dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
         }
         grown = grown > MAX_TET_SLOTS ? MAX_TET_SLOTS : grown;
         if (!vertices.reserve(4 * grown) || !adjacency.reserve(4 * grown)) return context_.fail_out_of_memory();
+        populate(vertices.data() + vertices.size(), (vertices.capacity() - vertices.size()) * sizeof(uint32_t));
+        populate(adjacency.data() + adjacency.size(), (adjacency.capacity() - adjacency.size()) * sizeof(uint32_t));
     }
     // Within capacity: these cannot fail.
     vertices.resize(vertices.size() + 4);
@@ -269,6 +289,8 @@ dbrg_status DelaunayBuilder::start() {
         !out_.vertices_.resize(20) || !out_.adjacency_.resize(20)) {
         return context_.fail_out_of_memory();
     }
+    populate(out_.vertices_.data(), out_.vertices_.capacity() * sizeof(uint32_t));
+    populate(out_.adjacency_.data(), out_.adjacency_.capacity() * sizeof(uint32_t));
     refresh_pointers();
     // Slot 0: the finite tetrahedron. Slot 1 + lf: the infinite one behind its face lf, with the face's
     // orientation reversed so that a point beyond the face sees it positively.
