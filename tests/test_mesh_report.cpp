@@ -14,6 +14,7 @@
 
 #include "io/mesh_io.h"
 #include "io/mesh_report.h"
+#include "support/shared_data.h"
 
 using namespace dbrg::io;
 
@@ -530,15 +531,6 @@ NaiveFigures naive_figures(const MeshData& mesh) {
     return n;
 }
 
-std::string shared_data_dir() {
-    if (const char* dir = std::getenv("DBRG_DATA_DIR")) return dir;
-#ifdef DBRG_SHARED_DATA_DIR
-    return DBRG_SHARED_DATA_DIR;
-#else
-    return "";
-#endif
-}
-
 } // namespace
 
 TEST_CASE("the naive computation agrees on the hand-made meshes") {
@@ -554,7 +546,7 @@ TEST_CASE("the naive computation agrees on the hand-made meshes") {
 }
 
 TEST_CASE("every mesh in ../shared/data matches the naive computation") {
-    const std::string dir = shared_data_dir();
+    const std::string dir = dbrg::test::shared_data_dir();
     DIR* listing = dir.empty() ? nullptr : opendir(dir.c_str());
     if (!listing) {
         MESSAGE("skipped: no shared data folder at '" << dir << "' (set DBRG_DATA_DIR to point at one)");

@@ -16,6 +16,7 @@
 #include "io/mesh_report.h"
 #include "samples/samples.h"
 #include "support/mesh_checks.h"
+#include "support/shared_data.h"
 
 using namespace dbrg;
 
@@ -168,22 +169,8 @@ TEST_CASE("the TetGen backend gives the same surface, or says it is not built in
 #endif
 }
 
-namespace {
-
-// ../shared/data, or DBRG_DATA_DIR; empty when neither is known (a user's clone has no data folder).
-std::string shared_data_dir() {
-    if (const char* dir = std::getenv("DBRG_DATA_DIR")) return dir;
-#ifdef DBRG_SHARED_DATA_DIR
-    return DBRG_SHARED_DATA_DIR;
-#else
-    return "";
-#endif
-}
-
-} // namespace
-
 TEST_CASE("the closed models of the shared data come out closed, and the bunny keeps its openings") {
-    const std::string dir = shared_data_dir();
+    const std::string dir = test::shared_data_dir();
     if (dir.empty()) {
         MESSAGE("skipped: no shared data folder known (set DBRG_DATA_DIR to point at one)");
         return;
