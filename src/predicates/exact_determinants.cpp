@@ -37,18 +37,66 @@ int det3(const double* p, const double* q, const double* r, double* h) {
     return sum(term12, n12, term3, n3, h);
 }
 
+// The raw-coordinate determinants of up to five points, built from shared parts: the 2x2 xy-minors of
+// each pair of points, then the 3x3 determinants of each triple (expanded along z over those minors, as
+// det3), then the 4x4 ones of each quadruple as alternating sums of 3x3 ones. Computed once each, where
+// evaluating every 4x4 determinant on its own computed each 2x2 minor six times and each 3x3 one twice.
+class RawMinors {
+public:
+    RawMinors(const double* const* points, int n) : points_(points) {
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j)
+                pair_length_[i][j] = product_difference(points[i][0], points[j][1], points[j][0], points[i][1], pair_[i][j]);
+        int count = 0;
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j)
+                for (int k = j + 1; k < n; ++k) {
+                    index_[i][j][k] = static_cast<signed char>(count);
+                    triple_length_[count] = triple(i, j, k, triple_[count]);
+                    ++count;
+                }
+    }
+
+    // h (96) = det of the rows (p, 1) for the points i < j < k < l, which equals det[pi-pl; pj-pl; pk-pl].
+    int quadruple(int i, int j, int k, int l, double* h) const {
+        const int ijk = index_[i][j][k], ijl = index_[i][j][l], ikl = index_[i][k][l], jkl = index_[j][k][l];
+        double negated_ijl[24], negated_jkl[24], left[48], right[48];
+        const int n_ijl = copy_negated(triple_[ijl], triple_length_[ijl], negated_ijl);
+        const int n_jkl = copy_negated(triple_[jkl], triple_length_[jkl], negated_jkl);
+        const int n_left = sum(triple_[ijk], triple_length_[ijk], negated_ijl, n_ijl, left);
+        const int n_right = sum(triple_[ikl], triple_length_[ikl], negated_jkl, n_jkl, right);
+        return sum(left, n_left, right, n_right, h);
+    }
+
+private:
+    static int copy_negated(const double* e, int n, double* h) {
+        for (int i = 0; i < n; ++i) h[i] = -e[i];
+        return n;
+    }
+
+    // h (24) = det[p_i; p_j; p_k], expanded along the z column as det3 does.
+    int triple(int i, int j, int k, double* h) const {
+        double term1[8], term2[8], term3[8], term12[16];
+        const int n1 = scale(pair_[j][k], pair_length_[j][k], points_[i][2], term1);
+        const int n2 = scale(pair_[i][k], pair_length_[i][k], -points_[j][2], term2);
+        const int n3 = scale(pair_[i][j], pair_length_[i][j], points_[k][2], term3);
+        const int n12 = sum(term1, n1, term2, n2, term12);
+        return sum(term12, n12, term3, n3, h);
+    }
+
+    const double* const* points_;
+    double pair_[5][5][4];
+    int pair_length_[5][5];
+    signed char index_[5][5][5];  // where triple i < j < k is kept
+    double triple_[10][24];
+    int triple_length_[10];
+};
+
 // h (96) = det of the rows (p, 1), (q, 1), (r, 1), (s, 1), which equals det[p-s; q-s; r-s].
 int orient3d_raw(const double* p, const double* q, const double* r, const double* s, double* h) {
-    double pqr[24], pqs[24], prs[24], qrs[24], left[48], right[48];
-    const int n_pqr = det3(p, q, r, pqr);
-    const int n_pqs = det3(p, q, s, pqs);
-    const int n_prs = det3(p, r, s, prs);
-    const int n_qrs = det3(q, r, s, qrs);
-    negate(pqs, n_pqs);
-    negate(qrs, n_qrs);
-    const int n_left = sum(pqr, n_pqr, pqs, n_pqs, left);
-    const int n_right = sum(prs, n_prs, qrs, n_qrs, right);
-    return sum(left, n_left, right, n_right, h);
+    const double* points[4] = {p, q, r, s};
+    const RawMinors minors(points, 4);
+    return minors.quadruple(0, 1, 2, 3, h);
 }
 
 // h (4) = p[u] * q[v] - q[u] * p[v].
@@ -86,13 +134,14 @@ int insphere_translated(const double (*rows)[3]) {
 // Rows (p, |p|^2, 1) for the five points, expanded along the lift column. Its two buffers take about
 // 92 KB of stack; only inputs whose differences are inexact and whose filter failed get here.
 int insphere_raw(const double* const* points) {
+    const RawMinors minors(points, 5);
     Accumulator<5 * 6 * 192> total;
     for (int i = 0; i < 5; ++i) {
-        const double* other[4];
+        int other[4];
         for (int j = 0, k = 0; j < 5; ++j)
-            if (j != i) other[k++] = points[j];
+            if (j != i) other[k++] = j;
         double minor[96], lift[6];
-        const int n_minor = orient3d_raw(other[0], other[1], other[2], other[3], minor);
+        const int n_minor = minors.quadruple(other[0], other[1], other[2], other[3], minor);
         if (i % 2 == 0) negate(minor, n_minor);
         const int n_lift = squared_norm(points[i][0], points[i][1], points[i][2], lift);
         total.add_product<192>(minor, n_minor, lift, n_lift);
