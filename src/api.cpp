@@ -171,15 +171,19 @@ DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_para
     dbrg_mesh* mesh = *out_mesh = open_result<dbrg_mesh>(given, params);
     if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
     if (mesh->status != DBRG_OK) return mesh->status;
+    MemoryMeter meter;  // the working memory and the result's together: the pipeline frees the one before the other grows
     Context context(params);
+    context.memory.count_in(&meter);
+    mesh->memory.count_in(&meter);
     const double start = seconds_now();
     const dbrg_status status = reconstruct_surface(points, context, mesh->surface);
     if (status != DBRG_OK) mesh->surface = SurfaceResult(mesh->memory);
+    mesh->memory.count_in(nullptr);
     mesh->record(status, status == DBRG_OK ? "" : context.message());
     mesh->point_count = status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
     mesh->stats = context.stats;
     mesh->stats.seconds_total = seconds_now() - start;
-    mesh->stats.peak_bytes = context.memory.peak_bytes() + mesh->memory.bytes_in_use();
+    mesh->stats.peak_bytes = meter.peak;
     return status;
 }
 

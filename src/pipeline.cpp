@@ -36,7 +36,7 @@ dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& contex
 }
 
 // Which components to turn over: the closed ones (no boundary half-edge) whose signed volume is negative.
-dbrg_status find_inward_components(const Surface& surface, const Tetrahedralization& delaunay, Context& context,
+dbrg_status find_inward_components(const Surface& surface, const ConditionedPoints& points, Context& context,
                                    Array<uint32_t>& face_component, Array<uint8_t>& flip) {
     const uint32_t components = surface.label_components(face_component);
     if (components == NO_FACE) return context.fail_out_of_memory();
@@ -49,9 +49,9 @@ dbrg_status find_inward_components(const Surface& surface, const Tetrahedralizat
         const uint32_t k = face_component[f];
         if (k == NO_FACE) continue;
         for (uint32_t i = 0; i < 3; ++i) open[k] |= surface.is_boundary(3 * f + i) ? 1 : 0;
-        const Vec3 a = load_vec3(delaunay.point(surface.corner(f, 0)));
-        const Vec3 b = load_vec3(delaunay.point(surface.corner(f, 1)));
-        const Vec3 c = load_vec3(delaunay.point(surface.corner(f, 2)));
+        const Vec3 a = load_vec3(points.point(surface.corner(f, 0)));
+        const Vec3 b = load_vec3(points.point(surface.corner(f, 1)));
+        const Vec3 c = load_vec3(points.point(surface.corner(f, 2)));
         volume[k] += dot(a, cross(b, c));
     }
     for (uint32_t k = 0; k < components; ++k) flip[k] = !open[k] && volume[k] < 0;
@@ -60,12 +60,12 @@ dbrg_status find_inward_components(const Surface& surface, const Tetrahedralizat
 }
 
 // Triangles in the caller's indices, closed components turned outward, and the boundary loops.
-dbrg_status emit_surface(const Surface& surface, const Tetrahedralization& delaunay, const ConditionedPoints& conditioned,
-                         Context& context, SurfaceResult& result) {
+dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& conditioned, Context& context,
+                         SurfaceResult& result) {
     const uint32_t faces = surface.face_count();
     Array<uint32_t> face_component(context.memory);
     Array<uint8_t> flip(context.memory);
-    DBRG_PROPAGATE(find_inward_components(surface, delaunay, context, face_component, flip));
+    DBRG_PROPAGATE(find_inward_components(surface, conditioned, context, face_component, flip));
     if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
     for (uint32_t f = 0; f < faces; ++f) {
         if (surface.face_removed(f)) continue;
@@ -107,24 +107,28 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
     ConditionedPoints conditioned(context.memory);
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
 
-    Tetrahedralization delaunay(context.memory);
-    DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
-
-    double start = seconds_now();
     Surface surface(context.memory);
-    RegionGrower grower(delaunay, surface, context);
-    DBRG_PROPAGATE(grower.grow());
-    context.stats.seconds_grow = seconds_now() - start;
+    {
+        // The tetrahedralization and the grower's tables live until hole filling is done: their memory is
+        // given back before the output is allocated.
+        Tetrahedralization delaunay(context.memory);
+        DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
 
-    if (context.params.fill_holes) {
-        start = seconds_now();
-        HoleFiller filler(delaunay, surface, grower, context);
-        DBRG_PROPAGATE(filler.fill());
-        context.stats.seconds_fill_holes = seconds_now() - start;
+        double start = seconds_now();
+        RegionGrower grower(delaunay, surface, context);
+        DBRG_PROPAGATE(grower.grow());
+        context.stats.seconds_grow = seconds_now() - start;
+
+        if (context.params.fill_holes) {
+            start = seconds_now();
+            HoleFiller filler(delaunay, surface, grower, context);
+            DBRG_PROPAGATE(filler.fill());
+            context.stats.seconds_fill_holes = seconds_now() - start;
+        }
     }
 
-    start = seconds_now();
-    DBRG_PROPAGATE(emit_surface(surface, delaunay, conditioned, context, result));
+    const double start = seconds_now();
+    DBRG_PROPAGATE(emit_surface(surface, conditioned, context, result));
     context.stats.seconds_output = seconds_now() - start;
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }

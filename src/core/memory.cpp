@@ -10,6 +10,11 @@ void* system_allocate(void*, size_t size) { return malloc(size); }
 void* system_reallocate(void*, void* block, size_t, size_t new_size) { return realloc(block, new_size); }
 void system_deallocate(void*, void* block, size_t) { free(block); }
 
+void add_to(MemoryMeter& meter, size_t added, size_t removed) {
+    meter.in_use = meter.in_use + added - removed;
+    if (meter.in_use > meter.peak) meter.peak = meter.in_use;
+}
+
 } // namespace
 
 Memory::Memory(const dbrg_allocator* allocator) {
@@ -27,8 +32,7 @@ void* Memory::allocate(size_t size) {
         failed_ = true;
         return nullptr;
     }
-    in_use_ += size;
-    if (in_use_ > peak_) peak_ = in_use_;
+    add(size, 0);
     return block;
 }
 
@@ -39,15 +43,26 @@ void* Memory::reallocate(void* block, size_t old_size, size_t new_size) {
         failed_ = true;
         return nullptr;
     }
-    in_use_ = in_use_ - old_size + new_size;
-    if (in_use_ > peak_) peak_ = in_use_;
+    add(new_size, old_size);
     return moved;
 }
 
 void Memory::release(void* block, size_t size) {
     if (!block) return;
     allocator_.deallocate(allocator_.user, block, size);
-    in_use_ -= size;
+    add(0, size);
+}
+
+void Memory::count_in(MemoryMeter* meter) {
+    if (meter_) meter_->in_use -= in_use_;
+    meter_ = meter;
+    if (meter_) add_to(*meter_, in_use_, 0);
+}
+
+void Memory::add(size_t added, size_t removed) {
+    in_use_ = in_use_ + added - removed;
+    if (in_use_ > peak_) peak_ = in_use_;
+    if (meter_) add_to(*meter_, added, removed);
 }
 
 } // namespace dbrg

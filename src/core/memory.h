@@ -7,6 +7,13 @@
 
 namespace dbrg {
 
+// Bytes held through several Memory objects together (a call's working memory and its result's), and
+// their joint peak.
+struct MemoryMeter {
+    size_t in_use = 0;
+    size_t peak = 0;
+};
+
 // Wraps a dbrg_allocator. Counts the bytes held and their peak, and keeps a sticky flag once any
 // allocation has failed, so that a long computation can check once instead of after every push.
 class Memory {
@@ -26,10 +33,17 @@ public:
     size_t bytes_in_use() const { return in_use_; }
     size_t peak_bytes() const { return peak_; }
 
+    // Also counts this object's bytes in `meter` from now on (bytes already held included), or stops
+    // counting them with NULL. The meter must outlive the counting.
+    void count_in(MemoryMeter* meter);
+
 private:
+    void add(size_t added, size_t removed);
+
     dbrg_allocator allocator_;
     size_t in_use_ = 0;
     size_t peak_ = 0;
+    MemoryMeter* meter_ = nullptr;
     bool failed_ = false;
 };
 
