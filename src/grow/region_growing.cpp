@@ -36,6 +36,62 @@ void orient_upward(const Tetrahedralization& delaunay, uint32_t corners[3]) {
     if (flip) std::swap(corners[1], corners[2]);
 }
 
+// One tetrahedron of the ring around an edge (u, v), read at once: its two vertices other than u and v,
+// their local indices, and its four neighbours.
+struct RingTet {
+    uint32_t others[2];
+    uint32_t local[2];
+    uint32_t adjacent[4];
+};
+
+inline RingTet read_ring_tet(const Tetrahedralization& delaunay, uint32_t t, uint32_t u, uint32_t v) {
+    RingTet r;
+    uint32_t vertex[4];
+    for (uint32_t i = 0; i < 4; ++i) vertex[i] = delaunay.tet_vertex(t, i);
+    for (uint32_t i = 0; i < 4; ++i) r.adjacent[i] = delaunay.tet_adjacent(t, i);
+    uint32_t n = 0;
+    for (uint32_t lv = 0; lv < 4; ++lv) {
+        if (vertex[lv] != u && vertex[lv] != v) {
+            r.others[n] = vertex[lv];
+            r.local[n++] = lv;
+        }
+    }
+    return r;
+}
+
+// Calls emit(apex, tet) for the same (apex, tet) pairs as Tetrahedralization::for_each_triangle_around_edge
+// from `start` (each tetrahedron of the ring with the triangle it shares with the next one), in another
+// order. Finding the next tetrahedron waits on a cache miss; the ring is walked from both sides of `start`
+// at once, so two of those misses are in flight together, and each tetrahedron's neighbours are read
+// together with its vertices rather than after them.
+template <class Emit>
+void walk_edge_ring(const Tetrahedralization& delaunay, uint32_t start, uint32_t u, uint32_t v, Emit&& emit) {
+    // Forward as for_each_triangle_around_edge: tetrahedron tf, whose apex is the vertex other than the one
+    // it shares with the previous tetrahedron (the first: others[0] unless that is NO_TET).
+    RingTet f = read_ring_tet(delaunay, start, u, v);
+    uint32_t tf = start, previous_apex = NO_TET;
+    const uint32_t first = f.others[0] == previous_apex ? 1 : 0;
+    // Backward: tetrahedron tb, entered through the face that holds `entered`, its apex in the forward order.
+    uint32_t tb = f.adjacent[f.local[first]], entered = f.others[1 - first];
+    RingTet b = read_ring_tet(delaunay, tb, u, v);
+    for (;;) {
+        const uint32_t k = f.others[0] == previous_apex ? 1 : 0;
+        emit(f.others[k], tf);
+        if (tf == tb) return;  // the sides met on one tetrahedron
+        const uint32_t next_f = f.adjacent[f.local[1 - k]];
+        emit(entered, tb);
+        if (next_f == tb) return;  // the sides met between two tetrahedra
+        const uint32_t j = b.others[0] == entered ? 0 : 1;
+        const uint32_t next_b = b.adjacent[b.local[j]];
+        previous_apex = f.others[k];
+        entered = b.others[1 - j];
+        tf = next_f;
+        tb = next_b;
+        f = read_ring_tet(delaunay, tf, u, v);
+        if (tb != tf) b = read_ring_tet(delaunay, tb, u, v);
+    }
+}
+
 } // namespace
 
 RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface, Context& context)
@@ -227,21 +283,35 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
     const double* pu = delaunay_.point(u);
     const double* pv = delaunay_.point(v);
     bool found = false;
-    delaunay_.for_each_triangle_around_edge(surface_.face_tet(face), u, v, [&](uint32_t apex, uint32_t tet) {
-        if (apex == INFINITE_VERTEX || apex == opposite) return true;
-        const double* pw = delaunay_.point(apex);
-        const double turn = dihedral_cosine(normal_b, triangle_normal(pv, pu, pw));
-        if (turn <= cos_sliver_) return true;
-        const double r = circumradius(pu, pv, pw);
-        const CandidateRank rank{static_cast<float>(r), turn, apex};
-        if ((after && !precedes(*after, rank)) || (found && !precedes(rank, out.rank()))) return true;
-        out.radius = r;
-        out.turn = turn;
-        out.apex = apex;
-        out.tet = tet;
-        found = true;
-        return true;
+    // The points of a batch of triangles are requested before any is used.
+    const uint32_t BATCH = 16;
+    uint32_t apexes[BATCH], tets[BATCH], n = 0;
+    const auto evaluate = [&]() {
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t apex = apexes[i];
+            const double* pw = delaunay_.point(apex);
+            const double turn = dihedral_cosine(normal_b, triangle_normal(pv, pu, pw));
+            if (turn <= cos_sliver_) continue;
+            const double r = circumradius(pu, pv, pw);
+            const CandidateRank rank{static_cast<float>(r), turn, apex};
+            // precedes is a total order: the best triangle does not depend on the order they come in.
+            if ((after && !precedes(*after, rank)) || (found && !precedes(rank, out.rank()))) continue;
+            out.radius = r;
+            out.turn = turn;
+            out.apex = apex;
+            out.tet = tets[i];
+            found = true;
+        }
+        n = 0;
+    };
+    walk_edge_ring(delaunay_, surface_.face_tet(face), u, v, [&](uint32_t apex, uint32_t tet) {
+        if (apex == INFINITE_VERTEX || apex == opposite) return;
+        __builtin_prefetch(delaunay_.point(apex));
+        apexes[n] = apex;
+        tets[n++] = tet;
+        if (n == BATCH) evaluate();
     });
+    evaluate();
     out.halfedge = halfedge;
     return found;
 }
