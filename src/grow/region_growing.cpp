@@ -195,7 +195,8 @@ dbrg_status RegionGrower::drain_queue() {
         if (c.version != versions_[c.halfedge] || !surface_.is_boundary(c.halfedge)) continue;  // stale
         ++stats.candidates_evaluated;
         double smoothness;
-        const Verdict verdict = examine(c, smoothness);
+        FaceCheck check;
+        const Verdict verdict = examine(c, smoothness, check);
         if (verdict == Verdict::pinch && !c.postponed) {
             DBRG_PROPAGATE(postpone(c));
             continue;
@@ -220,7 +221,7 @@ dbrg_status RegionGrower::drain_queue() {
             continue;
         }
         const uint32_t h = c.halfedge;
-        DBRG_PROPAGATE(add_face(surface_.target(h), surface_.origin(h), c.apex, c.tet));
+        DBRG_PROPAGATE(add_face(surface_.target(h), surface_.origin(h), c.apex, c.tet, &check));
         if (++steps % 1024 == 0) {
             DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, double(used_vertices_) / delaunay_.vertex_count()));
         }
@@ -320,10 +321,10 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
 // half-edge u->v: no edge with a third face, compatible orientation, no neck that can never heal, and
 // dihedral angles with every neighbour in S below theta_sliver. Also computes the local smooth degree
 // (§3.1.3) over the neighbours the triangle would have.
-RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness) const {
+RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness, FaceCheck& check) const {
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
     const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
-    const FaceCheck check = surface_.check_face(v, u, c.apex);
+    check = surface_.check_face(v, u, c.apex);
     smoothness = dihedral_cosine(normal, face_normal(Surface::face_of(c.halfedge)));
     switch (check.verdict) {
     case FaceCheck::edge_nonmanifold: return Verdict::edge_nonmanifold;
@@ -379,16 +380,17 @@ dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after)
     Candidate c;
     ++versions_[halfedge];
     if (!select_candidate(halfedge, after, c)) return DBRG_OK;
-    examine(c, c.smoothness);
+    FaceCheck check;
+    examine(c, c.smoothness, check);
     c.version = versions_[halfedge];
     c.postponed = 0;
     return enqueue(c) ? DBRG_OK : context_.fail_out_of_memory();
 }
 
 // Inserts face (a, b, c) into S and queues candidates for its new boundary edges (§3.2.2).
-dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
+dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck* check) {
     for (uint32_t corner : {a, b, c}) used_vertices_ += surface_.is_used(corner) ? 0 : 1;
-    const uint32_t f = surface_.add_face(a, b, c, tet);
+    const uint32_t f = check ? surface_.add_face(a, b, c, tet, *check) : surface_.add_face(a, b, c, tet);
     if (f == NO_FACE) return context_.fail_out_of_memory();
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
     const double r = circumradius(pa, pb, pc);

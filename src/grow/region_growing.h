@@ -53,11 +53,12 @@ private:
     dbrg_status drain_queue();
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
-    Verdict examine(const Candidate& candidate, double& smoothness) const;
+    Verdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
     bool passes_boundary_test(const Candidate& candidate) const;
     double local_mean_radius(uint32_t halfedge) const;
     dbrg_status propose(uint32_t halfedge, const CandidateRank* after);
-    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
+    // `check`, when given, is what surface_.check_face(a, b, c) returned with the surface as it is now.
+    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck* check = nullptr);
     dbrg_status postpone(Candidate candidate);
     bool enqueue(const Candidate& candidate);
     void release_queues();

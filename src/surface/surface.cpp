@@ -35,6 +35,19 @@ uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
     return found;
 }
 
+void Surface::find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const {
+    to_y = to_z = NO_HALFEDGE;
+    for_each_fan(x, [&](uint32_t start) {
+        uint32_t h = start;
+        do {
+            const uint32_t w = target(h);
+            if (w == y) to_y = h;
+            if (w == z) to_z = h;
+            h = rotate(h);
+        } while ((to_y == NO_HALFEDGE || to_z == NO_HALFEDGE) && h != NO_HALFEDGE && h != start);
+    });
+}
+
 uint32_t Surface::fan_exit(uint32_t incoming_boundary) const {
     uint32_t h = next(incoming_boundary);
     while (twins_[h] != NO_HALFEDGE) h = next(twins_[h]);
@@ -44,14 +57,19 @@ uint32_t Surface::fan_exit(uint32_t incoming_boundary) const {
 FaceCheck Surface::check_face(uint32_t a, uint32_t b, uint32_t c) const {
     FaceCheck check;
     const uint32_t corners[3] = {a, b, c};
+    // One turn around each corner finds its half-edges to both others: to the next corner (edge i in the
+    // face's direction) and to the previous one (the reverse of edge i + 2).
+    uint32_t to_next[3], to_previous[3];
     for (uint32_t i = 0; i < 3; ++i) {
-        const uint32_t x = corners[i], y = corners[(i + 1) % 3];
-        const uint32_t same = find_halfedge(x, y);
+        find_halfedges(corners[i], corners[(i + 1) % 3], corners[(i + 2) % 3], to_next[i], to_previous[i]);
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        const uint32_t same = to_next[i];
         if (same != NO_HALFEDGE) {
             check.verdict = is_boundary(same) ? FaceCheck::orientation : FaceCheck::edge_nonmanifold;
             return check;
         }
-        const uint32_t reverse = find_halfedge(y, x);
+        const uint32_t reverse = to_previous[(i + 1) % 3];
         if (reverse != NO_HALFEDGE && !is_boundary(reverse)) {
             check.verdict = FaceCheck::edge_nonmanifold;
             return check;
@@ -81,13 +99,20 @@ FaceCheck Surface::check_face(uint32_t a, uint32_t b, uint32_t c) const {
 }
 
 uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
+    FaceCheck check;
+    const uint32_t corners[3] = {a, b, c};
+    for (uint32_t i = 0; i < 3; ++i) check.shared[i] = find_halfedge(corners[(i + 1) % 3], corners[i]);
+    return add_face(a, b, c, tet, check);
+}
+
+uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck& check) {
     const uint32_t f = face_count();
     if (!corners_.reserve(corners_.size() + 3) || !twins_.reserve(twins_.size() + 3) || !tets_.reserve(tets_.size() + 1)) {
         return NO_FACE;
     }
     const uint32_t corners[3] = {a, b, c};
-    uint32_t shared[3], closes[3];
-    for (uint32_t i = 0; i < 3; ++i) shared[i] = find_halfedge(corners[(i + 1) % 3], corners[i]);
+    const uint32_t* shared = check.shared;
+    uint32_t closes[3];
     for (uint32_t i = 0; i < 3; ++i) {
         // Whether the fan entered through shared[i] is the one left through shared[i + 2]: the face closes it.
         closes[i] = shared[i] != NO_HALFEDGE && shared[(i + 2) % 3] != NO_HALFEDGE &&

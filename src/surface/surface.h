@@ -102,6 +102,9 @@ public:
     // Adds face (a, b, c), remembering tetrahedron `tet`, linked to the boundary half-edges it shares.
     // check_face must have found it valid. Returns the face id, or NO_FACE on allocation failure.
     uint32_t add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet);
+    // The same with `check`, what check_face(a, b, c) returned with S as it is now, which saves looking
+    // up the shared half-edges again.
+    uint32_t add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck& check);
 
     // Removes face f; its neighbours' half-edges become boundary. May pinch a corner whose fan it split.
     // Returns false on allocation failure.
@@ -132,6 +135,8 @@ private:
         uint32_t halfedge;  // the fan's outgoing boundary half-edge
     };
 
+    // The half-edges from x to y and from x to z (NO_HALFEDGE where there is none), in one turn around x.
+    void find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const;
     bool add_fan(uint32_t v, uint32_t h);
     void replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h);
     void drop_fan(uint32_t v, uint32_t h);
