@@ -71,9 +71,9 @@ struct EdgeEntry {
 constexpr uint64_t EMPTY_EDGE = UINT64_MAX;
 
 struct FiledFace {
-    uint64_t reversed;  // y << 32 | x for the face filed under (x, y): the key of the face across it
-    uint32_t link;      // the new tetrahedron and its local face, as filed
-    uint32_t entry;     // where in the table it was filed
+    uint64_t edge;   // x << 32 | y for the face running v -> x -> y
+    uint32_t link;   // the new tetrahedron and its local face
+    uint32_t entry;  // where in the table it was filed (faces filed only)
 };
 
 // A hint to the processor that `address` is needed soon. The tetrahedron store is far larger than the
@@ -450,46 +450,59 @@ void DelaunayBuilder::choose_hint(const double* q) {
 dbrg_status DelaunayBuilder::link_new_tets() {
     // The three faces of a new tetrahedron that contain v meet the other new tetrahedra along the edges
     // of the cavity boundary. Seen from the new tetrahedron, with v first, such a face runs v -> x -> y;
-    // the tetrahedron on the other side sees the same face reversed, v -> y -> x. So a first pass files
-    // every face under its directed edge (x, y) and a second pass looks up (y, x): two loops without
-    // the unpredictable found/not-found branch of a single pass. The first pass keeps each face's key
-    // (y, x) and table entry for the second and for emptying the table.
+    // the tetrahedron on the other side sees the same face reversed, v -> y -> x. Of each such pair, the
+    // face with x > y is filed under (x, y) and the one with x < y looks up (y, x) and links both: half
+    // the table work of filing and looking up every face. The faces are first sorted into the two kinds
+    // without a branch (each is written at both ends of filed_, and one end advances), so that the loops
+    // that follow have no unpredictable found/not-found or filed/looked-up branch.
     const size_t face_count = new_tets_.size();
     size_t capacity = 64;
-    while (capacity < 6 * face_count) capacity *= 2;
+    while (capacity < 3 * face_count) capacity *= 2;
     if (edges_.size() < capacity) {
         if (!edges_.resize(capacity)) return context_.fail_out_of_memory();
         for (EdgeEntry& e : edges_) e.edge = EMPTY_EDGE;
     }
-    if (!filed_.resize(3 * face_count)) return context_.fail_out_of_memory();
+    const size_t total = 3 * face_count;
+    if (!filed_.resize(total)) return context_.fail_out_of_memory();
     const uint32_t mask = static_cast<uint32_t>(edges_.size() - 1);
     EdgeEntry* table = edges_.data();
     FiledFace* filed = filed_.data();
-    for (size_t i = 0, j = 0; i < face_count; ++i) {
+    size_t to_file = 0, to_look_up = 0;  // filed[0, to_file) are filed, filed[total - to_look_up, total) look up
+    for (size_t i = 0; i < face_count; ++i) {
         const uint32_t s = new_slots_[i];
         const NewTet& made = new_tets_[i];
         for (uint32_t g = 0; g < 4; ++g) {
             if (g == made.face) continue;
-            const uint64_t x = made.vertex[DIRECTED_EDGE[made.face][g][0]];
-            const uint64_t y = made.vertex[DIRECTED_EDGE[made.face][g][1]];
-            const uint64_t edge = x << 32 | y;
-            uint32_t k = hash_edge(edge) & mask;
-            while (table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
-            table[k].edge = edge;
-            table[k].link = s << 2 | g;
-            filed[j++] = FiledFace{y << 32 | x, s << 2 | g, k};
+            const uint32_t x = made.vertex[DIRECTED_EDGE[made.face][g][0]];
+            const uint32_t y = made.vertex[DIRECTED_EDGE[made.face][g][1]];
+            const FiledFace face{uint64_t(x) << 32 | y, s << 2 | g, 0};
+            filed[to_file] = face;
+            filed[total - 1 - to_look_up] = face;
+            const bool file = x > y;
+            to_file += file;
+            to_look_up += !file;
         }
     }
-    bool complete = true;
-    const size_t filed_count = filed_.size();
-    for (size_t j = 0; j < filed_count; ++j) {
-        const uint64_t reversed = filed[j].reversed;
+    for (size_t j = 0; j < to_file; ++j) {
+        const uint64_t edge = filed[j].edge;
+        uint32_t k = hash_edge(edge) & mask;
+        while (table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
+        table[k].edge = edge;
+        table[k].link = filed[j].link;
+        filed[j].entry = k;
+    }
+    bool complete = to_file == to_look_up;
+    for (size_t j = total - to_look_up; j < total; ++j) {
+        const uint64_t edge = filed[j].edge;
+        const uint64_t reversed = edge << 32 | edge >> 32;
         uint32_t k = hash_edge(reversed) & mask;
         while (table[k].edge != reversed && table[k].edge != EMPTY_EDGE) k = (k + 1) & mask;
         complete &= table[k].edge == reversed;
-        adjacency_[filed[j].link] = table[k].link;  // link = slot << 2 | face = the face's adjacency index
+        // A link is slot << 2 | face: the face's index in adjacency_.
+        adjacency_[filed[j].link] = table[k].link;
+        adjacency_[table[k].link] = filed[j].link;
     }
-    for (size_t j = 0; j < filed_count; ++j) table[filed[j].entry].edge = EMPTY_EDGE;
+    for (size_t j = 0; j < to_file; ++j) table[filed[j].entry].edge = EMPTY_EDGE;
     if (!complete) return context_.fail(DBRG_ERR_INTERNAL, "the cavity boundary is not a closed surface (a bug in dbrg)");
     return DBRG_OK;
 }
