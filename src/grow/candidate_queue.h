@@ -23,18 +23,15 @@ inline bool precedes(const CandidateRank& a, const CandidateRank& b) {
     return a.apex < b.apex;
 }
 
-// The candidate triangle of one boundary half-edge u->v of S: the Delaunay triangle (v, u, apex).
+// The candidate triangle of one boundary half-edge u->v of S: the Delaunay triangle (v, u, apex). 32 bytes:
+// the queue holds one per half-edge on the fronts, and those covered since until it next compacts.
 struct Candidate {
     double smoothness;   // local smooth degree LSD: mean cosine of the dihedral angles with its neighbours in S
     double radius;       // circumradius r(t)
-    double turn;         // cosine of its dihedral angle with the edge's face in S
     uint32_t halfedge;   // the boundary half-edge of S it attaches to
     uint32_t apex;       // its third vertex
     uint32_t tet;        // a Delaunay tetrahedron that has it as a face
-    uint8_t version;     // the half-edge's version when the candidate was computed; older entries are stale
     uint8_t postponed;   // 1 once it has been set aside for a retry
-
-    CandidateRank rank() const { return CandidateRank{static_cast<float>(radius), turn, apex}; }
 };
 
 // Higher smoothness first, then the smaller circumradius, then vertex and half-edge ids, which depend only

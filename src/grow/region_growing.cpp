@@ -101,15 +101,13 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       cos_sliver_(cos(context.params.sliver_angle)),
       queue_(context.memory),
       postponed_(context.memory),
-      versions_(context.memory),
-      cause_(context.memory) {}
+      open_(context.memory) {}
 
 dbrg_status RegionGrower::grow() {
     const uint32_t n = delaunay_.vertex_count();
     // A closed surface through all n points has 2n - 4 faces: reserve that at once rather than grow by halves.
     const size_t expected_faces = 2 * size_t(n);
-    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !versions_.reserve(3 * expected_faces) ||
-        !cause_.reserve(3 * expected_faces)) {
+    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !open_.reserve((3 * expected_faces + 7) / 8)) {
         return context_.fail_out_of_memory();
     }
 
@@ -118,8 +116,11 @@ dbrg_status RegionGrower::grow() {
     Array<uint32_t> by_height(context_.memory);
     if (!by_height.resize(n)) return context_.fail_out_of_memory();
     for (uint32_t v = 0; v < n; ++v) by_height[v] = v;
-    std::stable_sort(by_height.begin(), by_height.end(),
-                     [&](uint32_t a, uint32_t b) { return delaunay_.point(a)[2] > delaunay_.point(b)[2]; });
+    // (std::sort with the tie-break rather than std::stable_sort, which takes a buffer from the global heap.)
+    std::sort(by_height.begin(), by_height.end(), [&](uint32_t a, uint32_t b) {
+        const double za = delaunay_.point(a)[2], zb = delaunay_.point(b)[2];
+        return za != zb ? za > zb : a < b;
+    });
 
     for (uint32_t i = 0; i < n && components_ < context_.params.max_components; ++i) {
         const uint32_t v = by_height[i];
@@ -192,7 +193,10 @@ dbrg_status RegionGrower::drain_queue() {
     uint32_t steps = 0;
     while (!queue_.empty()) {
         Candidate c = queue_.pop();
-        if (c.version != versions_[c.halfedge] || !surface_.is_boundary(c.halfedge)) continue;  // stale
+        // A boundary half-edge has at most one candidate, in the queue or postponed, at any time: one is
+        // computed when the half-edge appears and after the last one was rejected, and regrow_holes computes
+        // them while both are empty. So an entry is stale exactly when a face has covered its half-edge.
+        if (!surface_.is_boundary(c.halfedge)) continue;
         ++stats.candidates_evaluated;
         double smoothness;
         FaceCheck check;
@@ -216,7 +220,7 @@ dbrg_status RegionGrower::drain_queue() {
                 DBRG_PROPAGATE(postpone(c));
             } else {
                 ++stats.rejected_boundary;
-                cause_[c.halfedge] = BOUNDARY_OPEN;
+                open_[c.halfedge / 8] |= uint8_t(1u << c.halfedge % 8);
             }
             continue;
         }
@@ -267,7 +271,7 @@ dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
     case Verdict::pinch: break;
     }
     // The edge moves on to its next-best candidate (§3.2.2).
-    const CandidateRank rejected = c.rank();
+    const CandidateRank rejected = rank(c);
     return propose(c.halfedge, &rejected);
 }
 
@@ -284,6 +288,7 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
     const double* pu = delaunay_.point(u);
     const double* pv = delaunay_.point(v);
     bool found = false;
+    CandidateRank best{0, 0, 0};
     // The points of a batch of triangles are requested before any is used.
     const uint32_t BATCH = 16;
     uint32_t apexes[BATCH], tets[BATCH], n = 0;
@@ -296,9 +301,9 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
             const double r = circumradius(pu, pv, pw);
             const CandidateRank rank{static_cast<float>(r), turn, apex};
             // precedes is a total order: the best triangle does not depend on the order they come in.
-            if ((after && !precedes(*after, rank)) || (found && !precedes(rank, out.rank()))) continue;
+            if ((after && !precedes(*after, rank)) || (found && !precedes(rank, best))) continue;
+            best = rank;
             out.radius = r;
-            out.turn = turn;
             out.apex = apex;
             out.tet = tets[i];
             found = true;
@@ -375,14 +380,21 @@ double RegionGrower::local_mean_radius(uint32_t halfedge) const {
     return sum / count;
 }
 
+// The candidate's place in its edge's candidate order, as select_candidate ranked it (the turn is
+// recomputed the same way rather than stored in every queue entry).
+CandidateRank RegionGrower::rank(const Candidate& c) const {
+    const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
+    const double turn = dihedral_cosine(face_normal(Surface::face_of(c.halfedge)),
+                                        triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex)));
+    return CandidateRank{static_cast<float>(c.radius), turn, c.apex};
+}
+
 // Computes the next candidate of a boundary half-edge and queues it; without one, the edge stays open.
 dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after) {
     Candidate c;
-    ++versions_[halfedge];
     if (!select_candidate(halfedge, after, c)) return DBRG_OK;
     FaceCheck check;
     examine(c, c.smoothness, check);
-    c.version = versions_[halfedge];
     c.postponed = 0;
     return enqueue(c) ? DBRG_OK : context_.fail_out_of_memory();
 }
@@ -395,7 +407,8 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
     const double r = circumradius(pa, pb, pc);
     radius_sum_ += r;
-    if (!versions_.resize(versions_.size() + 3, 0) || !cause_.resize(cause_.size() + 3, BOUNDARY_UNRESOLVED)) {
+    cause_halfedges_ = 3 * (f + 1);
+    if (!open_.resize((size_t(cause_halfedges_) + 7) / 8, 0)) {
         return context_.fail_out_of_memory();
     }
     if (observer_ && !observer_(observer_user_, surface_)) {
@@ -411,7 +424,7 @@ dbrg_status RegionGrower::regrow_holes() {
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
     for (uint32_t h = 0; h < halfedges; ++h) {
-        if (surface_.is_boundary(h) && cause_[h] == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
+        if (surface_.is_boundary(h) && boundary_cause(h) == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
     }
     DBRG_PROPAGATE(grow_component());
     release_queues();

@@ -43,7 +43,7 @@ public:
 
     // Why a boundary half-edge is on the boundary; faces added after growing count as unresolved.
     BoundaryCause boundary_cause(uint32_t halfedge) const {
-        return halfedge < cause_.size() ? static_cast<BoundaryCause>(cause_[halfedge]) : BOUNDARY_UNRESOLVED;
+        return halfedge < cause_halfedges_ && (open_[halfedge / 8] >> halfedge % 8 & 1) ? BOUNDARY_OPEN : BOUNDARY_UNRESOLVED;
     }
 
 private:
@@ -56,6 +56,7 @@ private:
     Verdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
     bool passes_boundary_test(const Candidate& candidate) const;
     double local_mean_radius(uint32_t halfedge) const;
+    CandidateRank rank(const Candidate& candidate) const;
     dbrg_status propose(uint32_t halfedge, const CandidateRank* after);
     // `check`, when given, is what surface_.check_face(a, b, c) returned with the surface as it is now.
     dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck* check = nullptr);
@@ -76,10 +77,8 @@ private:
 
     CandidateQueue queue_;
     Array<Candidate> postponed_;     // set aside once, retried when the queue runs dry
-    // Per half-edge, bumped whenever a new candidate is computed so older queue entries are skipped. It may
-    // wrap: an old entry taken for current is still examined in full before anything is attached.
-    Array<uint8_t> versions_;
-    Array<uint8_t> cause_;           // per half-edge: BoundaryCause
+    Array<uint8_t> open_;            // a bit per half-edge: its cause is BOUNDARY_OPEN
+    uint32_t cause_halfedges_ = 0;   // the half-edges of the faces growing added, which have a bit in open_
     uint32_t components_ = 0;        // seeds that grew into a surface of their own
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
