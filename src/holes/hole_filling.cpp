@@ -12,20 +12,6 @@
 #include "grow/triangle_geometry.h"
 
 namespace dbrg {
-namespace {
-
-// How often a hole may be enlarged by removing its boundary triangles before it is left open.
-const uint32_t MAX_ENLARGEMENTS = 2;
-
-// Components smaller than this that hole filling leaves apart from the rest are removed (as in growing).
-const uint32_t MIN_ISLAND_FACES = 16;
-
-// A hole that cannot be filled within theta_sliver is tried once more with this limit: at a sharp tip (a
-// horn, an ear) the only triangles over the hole's vertices fold more sharply than theta_sliver allows,
-// and a closed surface is worth a sharp fold there. Folding back completely is still refused.
-const double LAST_RESORT_FOLD_ANGLE = 175.0 * 3.14159265358979323846 / 180.0;
-
-} // namespace
 
 HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context)
     : delaunay_(delaunay),
@@ -35,6 +21,11 @@ HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, Reg
       restored_open_(context.memory) {}
 
 dbrg_status HoleFiller::fill() {
+    DBRG_PROPAGATE(fill_holes());
+    return remove_small_handles();
+}
+
+dbrg_status HoleFiller::fill_holes() {
     dbrg_stats& stats = context_.stats;
     stats.holes_found = count_holes();
     if (stats.holes_found == 0) return DBRG_OK;
@@ -115,7 +106,7 @@ bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
         open_edges += is_open_boundary(h) ? 1 : 0;
         h = surface_.fan_exit(h);
     } while (h != start);
-    return is_hole(static_cast<uint32_t>(loop.size()), open_edges);
+    return filling_cut_ || is_hole(static_cast<uint32_t>(loop.size()), open_edges);
 }
 
 // Boundary loops that are holes (is_hole), of any length.

@@ -17,15 +17,35 @@
 
 namespace dbrg {
 
+struct SurfaceTopology;
+
 class HoleFiller {
 public:
     HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
 
     // Fills every hole of at most params.max_hole_edges edges that can be filled validly; leaves the
-    // open-surface boundaries (§4) alone. Fills the hole fields of context.stats.
+    // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles). Fills the
+    // hole fields of context.stats.
     dbrg_status fill();
 
+    // Handles removed by the last fill() (topological noise, see small_handles.cpp), and the triangles
+    // that removing them took away and added.
+    uint32_t handles_removed() const { return handles_removed_; }
+    uint32_t handle_triangles_removed() const { return handle_triangles_removed_; }
+    uint32_t handle_triangles_added() const { return handle_triangles_added_; }
+
 private:
+    // How often a hole may be enlarged by removing its boundary triangles before it is left open.
+    static constexpr uint32_t MAX_ENLARGEMENTS = 2;
+
+    // Components smaller than this that hole filling leaves apart from the rest are removed (as in growing).
+    static constexpr uint32_t MIN_ISLAND_FACES = 16;
+
+    // A hole that cannot be filled within theta_sliver is tried once more with this limit: at a sharp tip (a
+    // horn, an ear) the only triangles over the hole's vertices fold more sharply than theta_sliver allows,
+    // and a closed surface is worth a sharp fold there. Folding back completely is still refused.
+    static constexpr double LAST_RESORT_FOLD_ANGLE = 175.0 * 3.14159265358979323846 / 180.0;
+
     struct RemovedFace {
         uint32_t corners[3];
         uint32_t tet;
@@ -37,6 +57,13 @@ private:
         Array<uint32_t> added;
         Array<RemovedFace> removed;
     };
+
+    dbrg_status fill_holes();
+    // Topological noise removal (small_handles.cpp): cuts closed components along short non-separating
+    // cycles and fills both sides.
+    dbrg_status remove_small_handles();
+    dbrg_status cut_handle(const uint32_t* cycle, size_t length, SurfaceTopology& before, bool& removed);
+    double length_between(uint32_t a, uint32_t b) const;
 
     bool is_open_boundary(uint32_t halfedge) const;
     // A loop that the open-surface test made but that is this short is a hole all the same: a real border
@@ -76,6 +103,10 @@ private:
     // Faces restored after a failed attempt get new ids; their open-surface edges stay marked here.
     Array<uint8_t> restored_open_;  // per half-edge of faces added by this stage, from added_base_ on
     uint32_t added_base_ = 0;
+    bool filling_cut_ = false;  // the loops being filled were cut open by remove_small_handles: never borders
+    uint32_t handles_removed_ = 0;
+    uint32_t handle_triangles_removed_ = 0;
+    uint32_t handle_triangles_added_ = 0;
 };
 
 } // namespace dbrg
