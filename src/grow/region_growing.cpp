@@ -112,36 +112,75 @@ dbrg_status RegionGrower::grow() {
     }
 
     // Seeds are tried from the highest point down (§3.1.1); ties go to the smaller vertex id, which is a
-    // function of the coordinates (conditioning numbers the points along a Hilbert curve).
-    Array<uint32_t> by_height(context_.memory);
-    if (!by_height.resize(n)) return context_.fail_out_of_memory();
-    for (uint32_t v = 0; v < n; ++v) by_height[v] = v;
-    // (std::sort with the tie-break rather than std::stable_sort, which takes a buffer from the global heap.)
-    std::sort(by_height.begin(), by_height.end(), [&](uint32_t a, uint32_t b) {
+    // function of the coordinates (conditioning numbers the points along a Hilbert curve). Each vertex is
+    // tried once, when its turn comes, if it is unused then.
+    const auto before = [&](uint32_t a, uint32_t b) {
         const double za = delaunay_.point(a)[2], zb = delaunay_.point(b)[2];
         return za != zb ? za > zb : a < b;
-    });
-
-    for (uint32_t i = 0; i < n && components_ < context_.params.max_components; ++i) {
-        const uint32_t v = by_height[i];
+    };
+    // The first seed is the first vertex in that order. Nothing is sorted before it has grown: usually its
+    // component takes (almost) every point, and a list of all of them would be alive at growing's peak.
+    uint32_t first = 0;
+    for (uint32_t v = 1; v < n; ++v) first = before(v, first) ? v : first;
+    Array<uint32_t> removed(context_.memory);
+    DBRG_PROPAGATE(try_seed(first, removed));
+    // The others: the vertices after it that are unused now, in order, and those that pinch removal frees
+    // later while their turn is still to come (`freed`, kept in order, read alongside).
+    Array<uint32_t> pending(context_.memory), freed(context_.memory);
+    for (uint32_t v = 0; v < n; ++v) {
+        if (!surface_.is_used(v) && before(first, v) && !pending.push_back(v)) return context_.fail_out_of_memory();
+    }
+    std::sort(pending.begin(), pending.end(), before);
+    size_t next_pending = 0, next_freed = 0;
+    while (components_ < context_.params.max_components) {
+        const bool have_pending = next_pending < pending.size(), have_freed = next_freed < freed.size();
+        if (!have_pending && !have_freed) break;
+        uint32_t v;
+        if (!have_freed || (have_pending && !before(freed[next_freed], pending[next_pending]))) {
+            v = pending[next_pending++];
+        } else {
+            v = freed[next_freed++];
+        }
         if (surface_.is_used(v)) continue;
-        uint32_t corners[3], tet;
-        const bool seeded = find_seed(v, corners, tet);
-        if (context_.memory.failed()) return context_.fail_out_of_memory();
-        if (!seeded) continue;
-        const uint32_t faces_before = surface_.live_face_count();
-        DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
-        DBRG_PROPAGATE(grow_component());
-        DBRG_PROPAGATE(resolve_pinches());
-        // A seed that grew only a few faces (stray points) does not count against max_components; if its
-        // faces stay apart from everything else, they go with the islands below. (It may also have joined an
-        // earlier component: growing can attach to any boundary vertex.)
-        if (components_ == 0 || surface_.live_face_count() >= faces_before + MIN_SEEDED_COMPONENT_FACES) ++components_;
+        removed.clear();
+        DBRG_PROPAGATE(try_seed(v, removed));
+        for (uint32_t f : removed) {
+            for (uint32_t i = 0; i < 3; ++i) {
+                const uint32_t w = surface_.corner(f, i);
+                if (surface_.is_used(w) || !before(v, w) ||
+                    std::binary_search(pending.begin() + next_pending, pending.end(), w, before)) {
+                    continue;
+                }
+                uint32_t* const at = std::lower_bound(freed.begin() + next_freed, freed.end(), w, before);
+                if (at != freed.end() && *at == w) continue;
+                const size_t index = at - freed.begin();
+                if (!freed.push_back(w)) return context_.fail_out_of_memory();
+                std::rotate(freed.begin() + index, freed.end() - 1, freed.end());
+            }
+        }
     }
     release_queues();
     DBRG_PROPAGATE(remove_islands());
     context_.stats.components = components_;  // the output stage recounts after hole filling
     return context_.report(DBRG_STAGE_GROW, 1.0);
+}
+
+// Tries vertex v as a seed: grows a component from its seed triangle, if it has one, and resolves the
+// pinches left. Appends the faces that pinch resolution removed to `removed`.
+dbrg_status RegionGrower::try_seed(uint32_t v, Array<uint32_t>& removed) {
+    uint32_t corners[3], tet;
+    const bool seeded = find_seed(v, corners, tet);
+    if (context_.memory.failed()) return context_.fail_out_of_memory();
+    if (!seeded) return DBRG_OK;
+    const uint32_t faces_before = surface_.live_face_count();
+    DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
+    DBRG_PROPAGATE(grow_component());
+    DBRG_PROPAGATE(resolve_pinches(removed));
+    // A seed that grew only a few faces (stray points) does not count against max_components; if its
+    // faces stay apart from everything else, they go with the islands below. (It may also have joined an
+    // earlier component: growing can attach to any boundary vertex.)
+    if (components_ == 0 || surface_.live_face_count() >= faces_before + MIN_SEEDED_COMPONENT_FACES) ++components_;
+    return DBRG_OK;
 }
 
 // The smallest-circumradius Delaunay triangle at `vertex` whose corners are all unused (so it starts a
@@ -428,7 +467,8 @@ dbrg_status RegionGrower::regrow_holes() {
     }
     DBRG_PROPAGATE(grow_component());
     release_queues();
-    DBRG_PROPAGATE(resolve_pinches());
+    Array<uint32_t> removed(context_.memory);
+    DBRG_PROPAGATE(resolve_pinches(removed));
     const uint32_t after = surface_.live_face_count();
     context_.stats.hole_triangles_delaunay += after > before ? after - before : 0;
     return DBRG_OK;
@@ -450,11 +490,11 @@ dbrg_status RegionGrower::remove_islands() {
 }
 
 // Vertices still pinched when growing stops keep only their largest fan (Surface::remove_pinches).
-dbrg_status RegionGrower::resolve_pinches() {
-    Array<uint32_t> removed(context_.memory);
+dbrg_status RegionGrower::resolve_pinches(Array<uint32_t>& removed) {
+    const size_t first = removed.size();
     if (!surface_.remove_pinches(removed)) return context_.fail_out_of_memory();
-    for (uint32_t f : removed) radius_sum_ -= face_radius(f);
-    context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
+    for (size_t i = first; i < removed.size(); ++i) radius_sum_ -= face_radius(removed[i]);
+    context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size() - first);
     return DBRG_OK;
 }
 

@@ -64,7 +64,8 @@ private:
     bool enqueue(const Candidate& candidate);
     void release_queues();
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
-    dbrg_status resolve_pinches();
+    dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed);
+    dbrg_status resolve_pinches(Array<uint32_t>& removed);
     dbrg_status remove_islands();
     // Recomputed from the points rather than stored: cheaper in memory, and exact copies of the originals.
     Vec3 face_normal(uint32_t face) const;
