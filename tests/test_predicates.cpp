@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/splitmix64.h"
 #include "predicates/expansion.h"
 #include "predicates/filters.h"
 #include "predicates/predicates.h"
@@ -213,16 +214,9 @@ int brute_force_incircle3d_sos(const double* a, const double* b, const double* c
     return sign(determinant(m, 5)) * reference_orient3d(a, b, c, q);
 }
 
-// splitmix64: a fixed, portable sequence.
-struct Random {
-    uint64_t state;
-    explicit Random(uint64_t seed) : state(seed) {}
-    uint64_t next() {
-        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
+// A fixed, portable sequence.
+struct Random : SplitMix64 {
+    using SplitMix64::SplitMix64;
     // Uniform in [-1, 1) with a full 53-bit significand range, always a multiple of 2^-53.
     double unit() { return ldexp(static_cast<double>(next() >> 11), -52) - 1.0; }
     int integer(int lo, int hi) { return lo + static_cast<int>(next() % uint64_t(hi - lo + 1)); }

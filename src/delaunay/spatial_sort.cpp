@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "core/splitmix64.h"
 #include "core/status.h"
 
 namespace dbrg {
@@ -17,14 +18,6 @@ constexpr uint32_t ROUND_RATIO = 4;
 constexpr uint32_t MIN_ROUND = 256;
 constexpr int MAX_ROUNDS = 1 << (64 - 3 * HILBERT_BITS);
 constexpr uint64_t SHUFFLE_SEED = 0x6a09e667f3bcc909ull;
-
-// splitmix64: a small, well-mixed generator; one instance per call, seeded with a constant.
-uint64_t next_random(uint64_t& state) {
-    uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
 
 // Spreads the low 21 bits of v so that bit i lands on bit 3i.
 uint64_t spread_bits(uint32_t v) {
@@ -141,8 +134,7 @@ int BrioOrder::round_count(uint32_t count) {
 // remaining point with the same probability, and so on; the first takes the rest. The draw for a point
 // comes from a generator seeded with its index, so the rounds depend on nothing but the points.
 int BrioOrder::round_of(uint32_t index, int rounds) {
-    uint64_t state = SHUFFLE_SEED ^ (uint64_t(index) * 0xd1b54a32d192ed03ull);
-    uint64_t draw = next_random(state);
+    uint64_t draw = SplitMix64(SHUFFLE_SEED ^ (uint64_t(index) * 0xd1b54a32d192ed03ull)).next();
     int earlier = 0;  // how many rounds before the last one
     while (earlier + 1 < rounds && draw % ROUND_RATIO == 0) {
         ++earlier;

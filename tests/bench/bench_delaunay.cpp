@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/context.h"
+#include "core/splitmix64.h"
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
@@ -76,17 +77,7 @@ uint64_t status_field_bytes(const char* field) {
     return kb * 1024;
 }
 
-struct Random {
-    uint64_t state;
-    explicit Random(uint64_t seed) : state(seed) {}
-    uint64_t next() {
-        uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return (next() >> 11) * (1.0 / 9007199254740992.0); }
-};
+using Random = dbrg::SplitMix64;
 
 Dataset uniform_cube(size_t n) {
     Dataset d{"uniform " + std::to_string(n / 1000) + "k", std::vector<double>(3 * n)};
