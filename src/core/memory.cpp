@@ -22,6 +22,7 @@ Memory::Memory(const dbrg_allocator* allocator) {
         allocator_ = *allocator;
     } else {
         allocator_ = dbrg_allocator{system_allocate, system_reallocate, system_deallocate, nullptr};
+        system_ = true;
     }
 }
 

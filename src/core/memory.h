@@ -30,6 +30,9 @@ public:
     void release(void* block, size_t size);
 
     bool failed() const { return failed_; }
+    // True when the blocks come from the C library's malloc, not from a caller's allocator: only then may
+    // the library give the kernel advice about their pages.
+    bool uses_system_allocator() const { return system_; }
     size_t bytes_in_use() const { return in_use_; }
     size_t peak_bytes() const { return peak_; }
 
@@ -45,6 +48,7 @@ private:
     size_t peak_ = 0;
     MemoryMeter* meter_ = nullptr;
     bool failed_ = false;
+    bool system_ = false;
 };
 
 } // namespace dbrg

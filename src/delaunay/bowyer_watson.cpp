@@ -8,7 +8,9 @@
 #include <math.h>
 #include <string.h>
 #if defined(__linux__)
+#include <errno.h>
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 #include "core/status.h"
@@ -86,16 +88,23 @@ inline void prefetch(const void* address) {
 #endif
 }
 
-// Asks the kernel to map the pages inside [data, data + bytes) now, in one call, instead of one page
-// fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
-// written in full anyway. Advice only: where unsupported, nothing changes.
-void populate(void* data, size_t bytes) {
+// Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
+// page fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
+// written in full anyway. Advice only, and only for malloc's memory: a caller's allocator may hand out
+// memory the library must not give advice about. errno is left as it was.
+void populate(const Memory& memory, void* data, size_t bytes) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    constexpr uintptr_t PAGE = 4096;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + PAGE - 1) & ~(PAGE - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(PAGE - 1);
+    if (!memory.uses_system_allocator()) return;
+    const long page_size = sysconf(_SC_PAGESIZE);
+    if (page_size <= 0) return;
+    const uintptr_t page = static_cast<uintptr_t>(page_size);
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + page - 1) & ~(page - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(page - 1);
+    const int saved_errno = errno;
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+    errno = saved_errno;
 #else
+    (void)memory;
     (void)data;
     (void)bytes;
 #endif
@@ -184,9 +193,10 @@ dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
     if (4 * slots == out_.vertices_.size()) {
         size_t grown = slots + slots / GROWTH_DIVISOR + 64;
         if (inserted_ > 0 && inserted_ < count_) {
-            const double to_come = double(slots) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN;
-            const size_t projected = slots + static_cast<size_t>(to_come) + 64;
-            grown = projected > grown ? projected : grown;
+            // Clamped while still a double: the cast of a value beyond size_t's range is undefined.
+            double projected = slots + double(slots) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN + 64;
+            projected = projected < MAX_TET_SLOTS ? projected : MAX_TET_SLOTS;
+            grown = static_cast<size_t>(projected) > grown ? static_cast<size_t>(projected) : grown;
         }
         grown = grown > MAX_TET_SLOTS ? MAX_TET_SLOTS : grown;
         DBRG_PROPAGATE(size_store(grown));
@@ -203,8 +213,8 @@ dbrg_status DelaunayBuilder::size_store(size_t slots) {
     Array<uint32_t>& adjacency = out_.adjacency_;
     const size_t old_size = vertices.size();
     if (!vertices.reserve(4 * slots) || !adjacency.reserve(4 * slots)) return context_.fail_out_of_memory();
-    populate(vertices.data() + old_size, (vertices.capacity() - old_size) * sizeof(uint32_t));
-    populate(adjacency.data() + old_size, (adjacency.capacity() - old_size) * sizeof(uint32_t));
+    populate(memory_, vertices.data() + old_size, (vertices.capacity() - old_size) * sizeof(uint32_t));
+    populate(memory_, adjacency.data() + old_size, (adjacency.capacity() - old_size) * sizeof(uint32_t));
     // Within capacity: these cannot fail.
     vertices.resize(vertices.capacity());
     adjacency.resize(adjacency.capacity());
@@ -295,7 +305,8 @@ dbrg_status DelaunayBuilder::start() {
         v[0] = v[1];
         v[1] = swap;
     }
-    DBRG_PROPAGATE(size_store(static_cast<size_t>(EXPECTED_TETS_PER_POINT * count_) + 64));
+    const double expected = EXPECTED_TETS_PER_POINT * count_ + 64;
+    DBRG_PROPAGATE(size_store(static_cast<size_t>(expected < MAX_TET_SLOTS ? expected : MAX_TET_SLOTS)));
     slot_end_ = 5;
     // Slot 0: the finite tetrahedron. Slot 1 + lf: the infinite one behind its face lf, with the face's
     // orientation reversed so that a point beyond the face sees it positively.

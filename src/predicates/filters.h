@@ -33,7 +33,13 @@
 // far away and the rest close to the query point, where the product form failed on a large share of calls.
 #pragma once
 
+#include <float.h>
 #include <math.h>
+
+// The bounds assume that each operation on doubles rounds once, to double: not so with x87 arithmetic.
+#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
+#error "dbrg's floating-point filters need FLT_EVAL_METHOD == 0 (SSE2 arithmetic on x86)"
+#endif
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
