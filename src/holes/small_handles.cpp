@@ -26,6 +26,11 @@ constexpr uint32_t NO_VERTEX = UINT32_MAX;
 // while a tube sampled well enough to be reconstructed (a torus, the rocker arm's hole, a double torus
 // from 1000 points on) has none shorter than 7 edges.
 constexpr uint32_t MAX_CYCLE_EDGES = 6;
+// And it must be short in length, not only in edges: at most this many times the mean length of the
+// edges around its vertices. A bridge across a gap narrower than the spacing is crossed by cycles of
+// 1.3 to 2.9 local edge lengths (the cheburashka's neck, the cow's mouth), while a coarsely sampled tube
+// whose cross-section has only 4 to 6 edges (a torus of 100 to 150 points) goes around in more than 4.
+constexpr double MAX_CYCLE_LENGTH = 3.5;
 // A cycle of at most MAX_CYCLE_EDGES edges through a seed lies within this many edges of it.
 constexpr uint32_t BALL_RADIUS = MAX_CYCLE_EDGES / 2;
 // Homology classes are bit vectors over the 2g generators of the tree-cotree decomposition; at most this
@@ -327,6 +332,10 @@ dbrg_status HoleFiller::remove_small_handles() {
                 } while (h != start && h != NO_HALFEDGE);
             }
             candidate.measure = best_measure / (edge_sum / edge_count);
+            if (candidate.measure > MAX_CYCLE_LENGTH) {
+                cycles.shrink(candidate.first);
+                continue;
+            }
             if (!candidates.push_back(candidate)) return context_.fail_out_of_memory();
             for (uint32_t w = 0; w < words; ++w) {
                 uint64_t c = cls[size_t(best_u) * words + w] ^ cls[size_t(best_x) * words + w];
