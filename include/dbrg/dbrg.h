@@ -285,8 +285,9 @@ typedef struct dbrg_stats {
     uint32_t holes_filled;
     uint32_t holes_left_open;        /* too large (max_hole_edges) or impossible to fill validly */
     uint32_t hole_triangles_delaunay;/* Delaunay triangles attached by a second growing pass over the holes */
-    uint32_t hole_triangles_added;   /* new (non-Delaunay) triangles over the holes' vertices */
-    uint32_t hole_triangles_removed; /* by the recursive enlargement of holes */
+    uint32_t hole_triangles_added;   /* new (non-Delaunay) triangles over the holes' vertices, and over the
+                                        sides of small handles cut */
+    uint32_t hole_triangles_removed; /* by the recursive enlargement of holes, and by cutting small handles */
 
     uint64_t predicate_calls;        /* orient3d + insphere evaluations */
     uint64_t predicate_filter_failures; /* of those, how many the floating-point filter could not decide */
@@ -301,6 +302,9 @@ typedef struct dbrg_stats {
     double seconds_total;
 
     size_t peak_bytes;               /* the most memory held through the allocator at once */
+
+    uint32_t handles_removed;        /* small handles cut from closed components after hole filling (growing
+                                        bridged two sheets closer than the sample spacing) */
 } dbrg_stats;
 
 /* Copies the statistics of the call that made `mesh` into `stats`, up to stats->struct_size bytes,

@@ -131,6 +131,7 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_unsigned("hole_triangles_delaunay", s.hole_triangles_delaunay)
         .add_unsigned("hole_triangles_added", s.hole_triangles_added)
         .add_unsigned("hole_triangles_removed", s.hole_triangles_removed)
+        .add_unsigned("handles_removed", s.handles_removed)
         .add_unsigned("predicate_calls", s.predicate_calls)
         .add_unsigned("predicate_filter_failures", s.predicate_filter_failures)
         .add_unsigned("predicate_perturbations", s.predicate_perturbations)

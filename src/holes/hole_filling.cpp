@@ -22,7 +22,12 @@ HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, Reg
 
 dbrg_status HoleFiller::fill() {
     DBRG_PROPAGATE(fill_holes());
-    return remove_small_handles();
+    DBRG_PROPAGATE(remove_small_handles());
+    dbrg_stats& stats = context_.stats;
+    stats.handles_removed = handles_removed_;
+    stats.hole_triangles_added += handle_triangles_added_;
+    stats.hole_triangles_removed += handle_triangles_removed_;
+    return DBRG_OK;
 }
 
 dbrg_status HoleFiller::fill_holes() {

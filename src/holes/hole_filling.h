@@ -25,14 +25,8 @@ public:
 
     // Fills every hole of at most params.max_hole_edges edges that can be filled validly; leaves the
     // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles). Fills the
-    // hole fields of context.stats.
+    // hole and handle fields of context.stats.
     dbrg_status fill();
-
-    // Handles removed by the last fill() (topological noise, see small_handles.cpp), and the triangles
-    // that removing them took away and added.
-    uint32_t handles_removed() const { return handles_removed_; }
-    uint32_t handle_triangles_removed() const { return handle_triangles_removed_; }
-    uint32_t handle_triangles_added() const { return handle_triangles_added_; }
 
 private:
     // How often a hole may be enlarged by removing its boundary triangles before it is left open.

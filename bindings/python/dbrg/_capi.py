@@ -138,6 +138,7 @@ class dbrg_stats(ctypes.Structure):
         ("seconds_output", c_double),
         ("seconds_total", c_double),
         ("peak_bytes", c_size_t),
+        ("handles_removed", c_uint32),
     ]
 
 

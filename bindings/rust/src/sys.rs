@@ -125,6 +125,7 @@ pub struct dbrg_stats {
     pub seconds_output: f64,
     pub seconds_total: f64,
     pub peak_bytes: usize,
+    pub handles_removed: u32,
 }
 
 /// Opaque result of `dbrg_reconstruct`.
