@@ -408,7 +408,8 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
     }
     Memory& memory = context_.memory;
     Journal journal(memory);
-    Array<uint32_t> doomed(memory), starts(memory), pinched(memory);
+    Array<uint32_t> doomed(memory), starts(memory);
+    const uint32_t pinched_before = surface_.pinched_vertex_count();
     for (size_t i = 0; i < length; ++i) {
         bool ok = true;
         surface_.for_each_fan(cycle[i], [&](uint32_t start) {
@@ -429,15 +430,9 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
         }
         DBRG_PROPAGATE(remove_and_record(f, journal));
     }
-    if (!surface_.remove_pinches(pinched)) return context_.fail_out_of_memory();
-    bool grown = true;
-    for (uint32_t f : pinched) {
-        grown = grown && journal.removed.push_back(describe(f));
-        for (uint32_t i = 0; i < 3; ++i) {
-            surface_.for_each_fan(surface_.corner(f, i), [&](uint32_t start) { grown = grown && starts.push_back(start); });
-        }
-    }
-    if (!grown) return context_.fail_out_of_memory();
+    // A cut that leaves a vertex with two sheets is not a clean cut along the cycle: put it back. (Cutting
+    // the pinches off too, and undoing that when the fill failed, corrupted the surface: found by fuzzing.)
+    if (surface_.pinched_vertex_count() > pinched_before) return undo(journal, 0, 0);
 
     // Fill every loop the removal opened, each with the sliver limit first and the last resort after.
     filling_cut_ = true;
