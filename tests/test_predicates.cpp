@@ -132,28 +132,37 @@ int reference_insphere(const double* a, const double* b, const double* c, const 
     return sign(determinant(m, 4));
 }
 
+// The exact sign of the determinant filter::incircle evaluates: rows (p[u] - d[u], p[v] - d[v], |p - d|^2).
+int reference_incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v) {
+    const double* rows[3] = {a, b, c};
+    Big m[9];
+    for (int r = 0; r < 3; ++r) {
+        Big lift = big(0);
+        for (int k = 0; k < 3; ++k) {
+            const Big diff = fixed(rows[r][k]) - fixed(d[k]);
+            lift = lift + diff * diff;
+        }
+        m[3 * r] = fixed(rows[r][u]) - fixed(d[u]);
+        m[3 * r + 1] = fixed(rows[r][v]) - fixed(d[v]);
+        m[3 * r + 2] = lift;
+    }
+    return sign(determinant(m, 3));
+}
+
 // The 3D in-circle meaning for coplanar points: +1 inside the circle through a, b, c, whatever their order.
 int reference_incircle3d(const double* a, const double* b, const double* c, const double* d) {
     // Project along the axis of a non-zero normal component and multiply by that orientation.
     for (int drop = 0; drop < 3; ++drop) {
         const int u = (drop + 1) % 3, v = (drop + 2) % 3;
         const double* rows[3] = {a, b, c};
-        Big o[9], m[9];
+        Big o[9];
         for (int r = 0; r < 3; ++r) {
             o[3 * r] = fixed(rows[r][u]);
             o[3 * r + 1] = fixed(rows[r][v]);
             o[3 * r + 2] = big(1);
-            Big lift = big(0);
-            for (int k = 0; k < 3; ++k) {
-                const Big diff = fixed(rows[r][k]) - fixed(d[k]);
-                lift = lift + diff * diff;
-            }
-            m[3 * r] = fixed(rows[r][u]) - fixed(d[u]);
-            m[3 * r + 1] = fixed(rows[r][v]) - fixed(d[v]);
-            m[3 * r + 2] = lift;
         }
         const int orientation = sign(determinant(o, 3));
-        if (orientation != 0) return orientation * sign(determinant(m, 3));
+        if (orientation != 0) return orientation * reference_incircle_lifted(a, b, c, d, u, v);
     }
     return 0;
 }
@@ -700,23 +709,6 @@ TEST_CASE("incircle3d_sos with a, b, c nearly collinear") {
 }
 
 namespace {
-
-// The exact sign of the determinant filter::incircle evaluates: rows (p[u] - d[u], p[v] - d[v], |p - d|^2).
-int reference_incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v) {
-    const double* rows[3] = {a, b, c};
-    Big m[9];
-    for (int r = 0; r < 3; ++r) {
-        Big lift = big(0);
-        for (int k = 0; k < 3; ++k) {
-            const Big diff = fixed(rows[r][k]) - fixed(d[k]);
-            lift = lift + diff * diff;
-        }
-        m[3 * r] = fixed(rows[r][u]) - fixed(d[u]);
-        m[3 * r + 1] = fixed(rows[r][v]) - fixed(d[v]);
-        m[3 * r + 2] = lift;
-    }
-    return sign(determinant(m, 3));
-}
 
 int reference_orient2d(const double* a, const double* b, const double* c, int u, int v) {
     return sign((fixed(a[u]) - fixed(c[u])) * (fixed(b[v]) - fixed(c[v])) -
