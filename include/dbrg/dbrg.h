@@ -160,7 +160,8 @@ typedef struct dbrg_params {
     double boundary_factor;
     /* Over which triangles r_a is averaged. */
     dbrg_boundary_mean boundary_mean;
-    /* Non-zero: fill holes left by rejected candidates (paper section 5). Default 1. */
+    /* Non-zero: fill holes left by rejected candidates (paper section 5), then cut the small handles
+     * growing made where a closed surface comes closer to itself than the sample spacing. Default 1. */
     uint32_t fill_holes;
     /* Holes with more boundary edges than this stay open. At least 3; default 64. A loop most of whose
      * edges the open-surface test made is a border, not a hole, unless it is at most a quarter of this
