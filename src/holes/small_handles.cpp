@@ -451,7 +451,10 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
                 break;
             }
             const size_t added_from = journal.added.size(), removed_from = journal.removed.size();
-            const dbrg_status status = fill_hole(edge, MAX_ENLARGEMENTS, journal, filled);
+            // No enlargement: it could remove faces this cut's own fills added, and an undone enlargement
+            // restores them under new ids the journal does not know, which the final undo then leaves
+            // in place (a hang in the surface's fans, found by fuzzing).
+            const dbrg_status status = fill_hole(edge, 0, journal, filled);
             if (status != DBRG_OK) {
                 filling_cut_ = false;
                 return status;
