@@ -101,6 +101,13 @@ IoStatus read_mesh(const std::string& path, MeshData& out) {
     IoStatus status = without_exceptions([&] {
         std::FILE* file = std::fopen(path.c_str(), "rb");
         if (!file) return IoStatus::failure(std::strerror(errno));
+        // Reserving the file's size up front saves the copies of a doubling string (a 50 MB scan spent
+        // more time in them than in parsing); a size that cannot be told just means no reserve.
+        if (std::fseek(file, 0, SEEK_END) == 0) {
+            const long size = std::ftell(file);
+            if (size > 0) bytes.reserve(static_cast<size_t>(size));
+            std::rewind(file);
+        }
         char chunk[1 << 16];
         size_t got = 0;
         while ((got = std::fread(chunk, 1, sizeof chunk, file)) > 0) bytes.append(chunk, got);

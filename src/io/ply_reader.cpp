@@ -428,6 +428,8 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
         }
         const bool is_vertex = element.kind == ElementKind::vertex;
         if (is_vertex) out.positions.reserve(3 * static_cast<size_t>(element.count));
+        // One triangle per face is the common case; can_hold has bounded the count by the file's size.
+        if (element.kind == ElementKind::face) out.triangles.reserve(out.triangles.size() + 3 * static_cast<size_t>(element.count));
         for (uint64_t item = 0; item < element.count; ++item) {
             double xyz[3] = {0.0, 0.0, 0.0};
             corners.begin(element.kind);
