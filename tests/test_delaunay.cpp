@@ -103,7 +103,7 @@ TEST_CASE("the insertion order is streamed on Hilbert-numbered points and equals
             if (numbered) REQUIRE(renumber_spatially(points, context) == DBRG_OK);
             const uint32_t n = points.size();
             // Lexicographic numbering is not along the curve; renumber_spatially's is.
-            CHECK(in_hilbert_order(points.coordinates.data(), n) == (numbered == 1));
+            CHECK(in_hilbert_order(points.coordinates.data(), n, 1) == (numbered == 1));
             Array<uint32_t> sorted(context.memory);
             REQUIRE(brio_hilbert_order(points.coordinates.data(), n, context, sorted) == DBRG_OK);
             BrioOrder order(context.memory);

@@ -123,6 +123,19 @@ TEST_CASE("four threads at once get the results each call gets alone") {
     }
 }
 
+TEST_CASE("an input large enough to be split gives the same results on one thread and on several") {
+    // Above 100,000 points the sorting, scanning and store filling run in two or more parts.
+    const std::vector<double> xyz = samples::sample(samples::Shape::bumpy_sphere, 120000);
+    const Outcome one = run(xyz, 1);
+    REQUIRE(one.status == DBRG_OK);
+    for (uint32_t threads : {2u, 0u}) {
+        CAPTURE(threads);
+        const Outcome several = run(xyz, threads);
+        CHECK(several == one);
+        CHECK(several.live_blocks_after == 0);
+    }
+}
+
 TEST_CASE("one result read from four threads at once") {
     const std::vector<double> xyz = samples::sample(samples::Shape::open_cylinder, 1500);
     const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};

@@ -2,6 +2,8 @@
 #include "cli/cli_args.h"
 
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 
@@ -84,6 +86,19 @@ bool write_text_output(const std::string& path, const std::string& text, std::st
         error = (to_stdout ? std::string("standard output") : path) + ": write error";
         return false;
     }
+    return true;
+}
+
+bool parse_number(const std::string& text, double& value) {
+    char* end = nullptr;
+    value = std::strtod(text.c_str(), &end);
+    return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value);
+}
+
+bool parse_count(const std::string& text, uint32_t& value) {
+    double number;
+    if (!parse_number(text, number) || number < 0 || number > 4294967295.0 || number != std::floor(number)) return false;
+    value = uint32_t(number);
     return true;
 }
 

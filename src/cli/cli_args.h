@@ -1,6 +1,8 @@
 // Command-line helpers shared by the subcommands: option parsing, exit codes, error lines, output files.
 #pragma once
 
+#include <stdint.h>
+
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +36,11 @@ struct ParsedArgs {
 // "--name=value", "-h"/"--help", and "--" to end the options. Returns false with a message in `error`
 // for an unknown option, a missing value, or an option given twice.
 bool parse_args(int argc, char** argv, const std::vector<OptionSpec>& options, ParsedArgs& parsed, std::string& error);
+
+// A finite number, the whole text; false otherwise.
+bool parse_number(const std::string& text, double& value);
+// A whole number in 0 .. 2^32 - 1, the whole text; false otherwise.
+bool parse_count(const std::string& text, uint32_t& value);
 
 // Writes `text` to the file at `path`, or to stdout when path is empty or "-". Returns false with a
 // message in `error` when the file cannot be written.

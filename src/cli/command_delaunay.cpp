@@ -14,13 +14,15 @@ namespace dbrg::cli {
 namespace {
 
 const char* const DELAUNAY_USAGE =
-    "usage: dbrg delaunay INPUT [--backend builtin|tetgen] [--stats-json FILE] [--tets FILE]\n"
+    "usage: dbrg delaunay INPUT [--backend builtin|tetgen] [--threads N] [--stats-json FILE] [--tets FILE]\n"
     "\n"
     "Computes the Delaunay tetrahedralization of the points of INPUT (.ply .obj .off .xyz .pts; only the\n"
     "vertices are read) and prints a JSON report: points, unique_points, tetrahedra (finite ones), seconds\n"
     "(the tetrahedralization alone, reading excluded), peak_rss_bytes.\n"
     "\n"
     "  --backend builtin|tetgen  the engine (default builtin; tetgen only in builds with -Dtetgen=enabled)\n"
+    "  --threads N               threads for the stages that split (0: all, default; 1: none);\n"
+    "                            the tetrahedra are the same for any N\n"
     "  --stats-json FILE         write the report to FILE instead of standard output\n"
     "  --tets FILE               also write the tetrahedra, one per line: four input point indices\n"
     "  -h, --help                show this help\n";
@@ -45,6 +47,7 @@ int run_delaunay(int argc, char** argv) {
         {"--backend", nullptr, true},
         {"--stats-json", nullptr, true},
         {"--tets", nullptr, true},
+        {"--threads", nullptr, true},
     };
     ParsedArgs args;
     std::string error;
@@ -61,6 +64,9 @@ int run_delaunay(int argc, char** argv) {
     const std::string backend = args.value("--backend", "builtin");
     if (backend != "builtin" && backend != "tetgen") return report_error(EXIT_USAGE, "delaunay: --backend takes builtin or tetgen");
     params.backend = backend == "builtin" ? DBRG_BACKEND_BUILTIN : DBRG_BACKEND_TETGEN;
+    if (args.has("--threads") && !parse_count(args.value("--threads"), params.threads)) {
+        return report_error(EXIT_USAGE, "delaunay: --threads takes a whole number");
+    }
 
     io::MeshData mesh;
     const io::IoStatus read = io::read_mesh(args.positional[0], mesh);

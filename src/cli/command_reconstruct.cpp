@@ -37,22 +37,11 @@ const char* const RECONSTRUCT_USAGE =
     "  --max-hole-edges N       holes with more boundary edges stay open (default 64)\n"
     "  --max-components N       surfaces grown from separate seeds, at most (default 64)\n"
     "  --backend builtin|tetgen the Delaunay tetrahedralization to use (default builtin)\n"
+    "  --threads N              threads for the stages that split (0: all, default; 1: none);\n"
+    "                           the mesh is the same for any N\n"
     "  --stats-json FILE        write figures about the run as JSON (- for standard output)\n"
     "  -q, --quiet              no progress bar\n"
     "  -h, --help               show this help\n";
-
-bool parse_number(const std::string& text, double& value) {
-    char* end = nullptr;
-    value = std::strtod(text.c_str(), &end);
-    return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value);
-}
-
-bool parse_count(const std::string& text, uint32_t& value) {
-    double number;
-    if (!parse_number(text, number) || number < 0 || number > 4294967295.0 || number != std::floor(number)) return false;
-    value = uint32_t(number);
-    return true;
-}
 
 // Fills params from the options; returns false with a message for a malformed value.
 bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error) {
@@ -77,6 +66,9 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
     }
     if (args.has("--max-components") && !parse_count(args.value("--max-components"), params.max_components)) {
         return error = "--max-components takes a whole number", false;
+    }
+    if (args.has("--threads") && !parse_count(args.value("--threads"), params.threads)) {
+        return error = "--threads takes a whole number", false;
     }
     if (args.has("--backend")) {
         const std::string backend = args.value("--backend");
@@ -157,7 +149,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--demo-points", nullptr, true},  {"--boundary-factor", nullptr, true}, {"--boundary-mean", nullptr, true},
         {"--sliver-angle", nullptr, true}, {"--no-fill-holes", nullptr, false},  {"--max-hole-edges", nullptr, true},
         {"--max-components", nullptr, true}, {"--backend", nullptr, true},       {"--stats-json", nullptr, true},
-        {"--quiet", "-q", false},
+        {"--threads", nullptr, true},      {"--quiet", "-q", false},
     };
     ParsedArgs args;
     std::string error;

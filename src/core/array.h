@@ -57,6 +57,10 @@ public:
         return true;
     }
 
+    // Sets the size, at most the capacity, without writing the new elements: for a caller that writes
+    // them itself (in parallel slices, say).
+    void resize_unwritten(size_t size) { size_ = size <= capacity_ ? size : capacity_; }
+
     bool push_back(const T& value) {
         if (size_ == capacity_ && !reserve(grown_capacity())) return false;
         data_[size_++] = value;

@@ -23,7 +23,7 @@ void fill_default_params(dbrg_params& params) {
     params.max_hole_edges = 64;
     params.max_components = 64;
     params.backend = DBRG_BACKEND_BUILTIN;
-    params.threads = 1;
+    params.threads = 0;
 }
 
 const char* find_parameter_problem(const dbrg_params& params) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "core/parallel.h"
 #include "core/status.h"
 #include "delaunay/affine_checks.h"
 #include "delaunay/spatial_sort.h"
@@ -45,6 +46,9 @@ double snap_to_predicate_grid(double x) {
     const int grid_exponent = 200;
     return ldexp(nearbyint(ldexp(x, grid_exponent)), -grid_exponent);
 }
+
+// Below this many points per thread, a thread costs more to start than it saves.
+constexpr size_t MIN_POINTS_PER_THREAD = 50000;
 
 struct IndexedPoint {
     double p[3];
@@ -123,14 +127,18 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     // coordinates, then by index: the first of a group of equal points is the one with the smallest caller
     // coordinates (several distinct ones may round to one grid point), and among exact copies the one with
     // the smallest index. So the representative never depends on the input order.
+    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     Array<IndexedPoint> sorted(context.memory);
-    if (!sorted.resize(count)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) {
-        IndexedPoint& q = sorted[i];
-        for (int k = 0; k < 3; ++k) q.p[k] = snap_to_predicate_grid(ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent));
-        q.index = static_cast<uint32_t>(i);
-    }
-    std::sort(sorted.begin(), sorted.end(), [xyz](const IndexedPoint& a, const IndexedPoint& b) {
+    Array<IndexedPoint> scratch(context.memory);
+    if (!sorted.resize(count) || (parts > 1 && !scratch.resize(count))) return context.fail_out_of_memory();
+    for_each_slice(count, parts, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            IndexedPoint& q = sorted[i];
+            for (int k = 0; k < 3; ++k) q.p[k] = snap_to_predicate_grid(ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent));
+            q.index = static_cast<uint32_t>(i);
+        }
+    });
+    parallel_sort(sorted.data(), count, scratch.data(), parts, [xyz](const IndexedPoint& a, const IndexedPoint& b) {
         for (int k = 0; k < 3; ++k) {
             if (a.p[k] != b.p[k]) return a.p[k] < b.p[k];
         }
@@ -140,6 +148,7 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
         }
         return a.index < b.index;
     });
+    scratch.release();
 
     size_t distinct = 1;
     for (size_t i = 1; i < count; ++i) distinct += !same_point(sorted[i], sorted[i - 1]);
@@ -189,14 +198,16 @@ dbrg_status renumber_spatially(ConditionedPoints& points, Context& context) {
     Array<uint32_t> order(context.memory);
     Array<double> coordinates(context.memory);
     Array<uint32_t> input_index(context.memory);
-    if (!hilbert_order(points.coordinates.data(), n, order) || !coordinates.resize(3 * size_t(n)) ||
-        !input_index.resize(n)) {
+    if (!hilbert_order(points.coordinates.data(), n, context.params.threads, order) ||
+        !coordinates.resize(3 * size_t(n)) || !input_index.resize(n)) {
         return context.fail_out_of_memory();
     }
-    for (uint32_t i = 0; i < n; ++i) {
-        for (int k = 0; k < 3; ++k) coordinates[3 * size_t(i) + k] = points.coordinates[3 * size_t(order[i]) + k];
-        input_index[i] = points.input_index[order[i]];
-    }
+    for_each_slice(n, part_count(context.params.threads, n, MIN_POINTS_PER_THREAD), [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            for (int k = 0; k < 3; ++k) coordinates[3 * i + k] = points.coordinates[3 * size_t(order[i]) + k];
+            input_index[i] = points.input_index[order[i]];
+        }
+    });
     points.coordinates.swap(coordinates);
     points.input_index.swap(input_index);
     return DBRG_OK;

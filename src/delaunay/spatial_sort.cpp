@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "core/parallel.h"
 #include "core/splitmix64.h"
 #include "core/status.h"
 
@@ -68,12 +69,13 @@ private:
     double scale_;
 };
 
-// Sorts by key; ties (points in one grid cell) go by index, which keeps the order a function of the points.
-void sort_keyed(Array<KeyedIndex>& keyed) {
-    std::sort(keyed.begin(), keyed.end(), [](const KeyedIndex& a, const KeyedIndex& b) {
-        return a.key != b.key ? a.key < b.key : a.index < b.index;
-    });
+// Sorted by key; ties (points in one grid cell) go by index, which keeps the order a function of the points.
+bool by_key_then_index(const KeyedIndex& a, const KeyedIndex& b) {
+    return a.key != b.key ? a.key < b.key : a.index < b.index;
 }
+
+// Below this many points per thread, a thread costs more to start than it saves.
+constexpr size_t MIN_POINTS_PER_THREAD = 50000;
 
 } // namespace
 
@@ -119,7 +121,7 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& co
         keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | grid.key(points + 3 * size_t(i)), i};
     }
     DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.5));
-    sort_keyed(keyed);
+    std::sort(keyed.begin(), keyed.end(), by_key_then_index);
     for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
     return context.report(DBRG_STAGE_SORT, 1.0);
 }
@@ -149,32 +151,45 @@ dbrg_status BrioOrder::prepare(const double* points, uint32_t count, Context& co
     position_ = 0;
     round_ = 0;
     rounds_ = round_count(count);
-    streamed_ = in_hilbert_order(points, count);
+    streamed_ = in_hilbert_order(points, count, context.params.threads);
     if (!streamed_) return brio_hilbert_order(points, count, context, order_);
     DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.0));
     return context.report(DBRG_STAGE_SORT, 1.0);
 }
 
-bool in_hilbert_order(const double* points, uint32_t count) {
+bool in_hilbert_order(const double* points, uint32_t count, uint32_t threads) {
     if (count == 0) return true;
     const HilbertGrid grid(points, count);
-    uint64_t previous = 0;
-    for (uint32_t i = 0; i < count; ++i) {
-        const uint64_t key = grid.key(points + 3 * size_t(i));
-        if (key < previous) return false;
-        previous = key;
-    }
-    return true;
+    const uint32_t parts = part_count(threads, count, MIN_POINTS_PER_THREAD);
+    bool ordered[MAX_THREADS];
+    run_parts(parts, [&](uint32_t part) {
+        // Each slice also compares its first point with the one before it.
+        const size_t begin = part_begin(count, parts, part), end = part_begin(count, parts, part + 1);
+        uint64_t previous = begin == 0 ? 0 : grid.key(points + 3 * (begin - 1));
+        ordered[part] = true;
+        for (size_t i = begin; i < end && ordered[part]; ++i) {
+            const uint64_t key = grid.key(points + 3 * i);
+            ordered[part] = key >= previous;
+            previous = key;
+        }
+    });
+    return std::all_of(ordered, ordered + parts, [](bool b) { return b; });
 }
 
-bool hilbert_order(const double* points, uint32_t count, Array<uint32_t>& order) {
+bool hilbert_order(const double* points, uint32_t count, uint32_t threads, Array<uint32_t>& order) {
+    const uint32_t parts = part_count(threads, count, MIN_POINTS_PER_THREAD);
     Array<KeyedIndex> keyed(order.memory());
-    if (!order.resize(count) || !keyed.resize(count)) return false;
+    Array<KeyedIndex> scratch(order.memory());
+    if (!order.resize(count) || !keyed.resize(count) || (parts > 1 && !scratch.resize(count))) return false;
     if (count == 0) return true;
     const HilbertGrid grid(points, count);
-    for (uint32_t i = 0; i < count; ++i) keyed[i] = KeyedIndex{grid.key(points + 3 * size_t(i)), i};
-    sort_keyed(keyed);
-    for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
+    for_each_slice(count, parts, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) keyed[i] = KeyedIndex{grid.key(points + 3 * i), static_cast<uint32_t>(i)};
+    });
+    parallel_sort(keyed.data(), count, scratch.data(), parts, by_key_then_index);
+    for_each_slice(count, parts, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) order[i] = keyed[i].index;
+    });
     return true;
 }
 

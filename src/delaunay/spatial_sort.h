@@ -78,11 +78,12 @@ private:
 };
 
 // Whether the points are numbered along the Hilbert curve over their bounding box: their curve positions
-// (as hilbert_order computes them) never decrease.
-bool in_hilbert_order(const double* points, uint32_t count);
+// (as hilbert_order computes them) never decrease. Uses up to `threads` threads (0: all).
+bool in_hilbert_order(const double* points, uint32_t count, uint32_t threads);
 
 // Fills `order` with the permutation of 0 .. count - 1 along a Hilbert curve over the points' bounding box,
-// ties by index. Returns false on allocation failure.
-bool hilbert_order(const double* points, uint32_t count, Array<uint32_t>& order);
+// ties by index, using up to `threads` threads (0: all; the order is the same for any number). Returns
+// false on allocation failure.
+bool hilbert_order(const double* points, uint32_t count, uint32_t threads, Array<uint32_t>& order);
 
 } // namespace dbrg

@@ -197,8 +197,8 @@ pub struct Params {
     pub max_components: u32,
     /// Which tetrahedralization to use.
     pub backend: Backend,
-    /// Worker threads; 1 runs on the calling thread only, 0 uses every hardware thread. The result is
-    /// the same for any value.
+    /// Threads for the stages that split into parts; 1 runs on the calling thread only, 0 (the
+    /// default) uses every hardware thread. The result is the same for any value.
     pub threads: u32,
 }
 
