@@ -95,7 +95,8 @@ def parse_header(path):
             key, value = (s.strip() for s in item.split("="))
             constants[key] = int(value, 0)
         header["enums"][name] = constants
-    enums = set(header["enums"]) | {"dbrg_progress_fn"}
+    # Callback typedefs are passed like enums: one named scalar (a function pointer) per field.
+    enums = set(header["enums"]) | set(re.findall(r"typedef\s+\w+\s*\(\s*\*\s*(\w+)\s*\)", text))
     for name, body in re.findall(r"typedef\s+struct\s+(\w+)\s*\{(.*?)\}\s*\w+\s*;", text, flags=re.S):
         header["structs"][name] = [c_declaration(field, enums) for field in split_top_level(body, ";")]
     code = "\n".join(line for line in text.splitlines() if not line.lstrip().startswith("#"))
@@ -165,7 +166,7 @@ def parse_python(path):
 
 def rust_kind(type_text, aliases):
     type_text = " ".join(type_text.split())
-    if type_text.startswith(("*const", "*mut", "Option<", "&")) or type_text == "dbrg_progress_fn":
+    if type_text.startswith(("*const", "*mut", "Option<", "&")) or re.fullmatch(r"dbrg_\w+_fn", type_text):
         return "pointer"
     if type_text in aliases:
         return "int32"

@@ -37,8 +37,9 @@ const uint32_t HOLE_EDGES[] = {64, 3, 4, 1000, UINT32_MAX, 2, 0};
 const uint32_t COMPONENTS[] = {64, 1, 2, UINT32_MAX, 0};
 const uint32_t ENUM_VALUES[] = {0, 1, 0, 1, 2, UINT32_MAX};
 const uint32_t THREADS[] = {1, 0, 2, 4};
+// Ours, a newer caller's, a 0.1.0 caller's (without the snapshot fields), and two sizes no version has.
 const size_t STRUCT_SIZES[] = {sizeof(dbrg_params), sizeof(dbrg_params), sizeof(dbrg_params) + 8,
-                               sizeof(dbrg_params) - 8, 0};
+                               offsetof(dbrg_params, snapshot), offsetof(dbrg_params, snapshot) - 8, 0};
 
 enum class Fault { none, fail_one_allocation, fail_allocations_from, cancel };
 enum class Variant { none, reversed, relaid, rescaled };

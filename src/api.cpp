@@ -15,7 +15,7 @@ using namespace dbrg;
 namespace {
 
 // The part of dbrg_params that version 0.1 callers know; struct_size may not be smaller.
-const size_t PARAMS_V0_1_SIZE = sizeof(dbrg_params);
+const size_t PARAMS_V0_1_SIZE = offsetof(dbrg_params, snapshot);
 
 void write_message(char* message, size_t capacity, const char* text) {
     if (message && capacity > 0) snprintf(message, capacity, "%s", text);

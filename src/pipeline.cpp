@@ -8,6 +8,7 @@
 #include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
+#include "growth_snapshots.h"
 #include "holes/hole_filling.h"
 #include "surface/surface.h"
 
@@ -116,8 +117,11 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
 
         double start = seconds_now();
         RegionGrower grower(delaunay, surface, context);
+        GrowthSnapshots snapshots(conditioned, context);
+        snapshots.attach(grower);
         DBRG_PROPAGATE(grower.grow());
         context.stats.seconds_grow = seconds_now() - start;
+        DBRG_PROPAGATE(snapshots.finish(surface));
 
         if (context.params.fill_holes) {
             start = seconds_now();

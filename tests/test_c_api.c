@@ -116,6 +116,17 @@ static void test_params(void) {
     CHECK(params.struct_size == sizeof params);
     CHECK(fabs(params.sliver_angle - 5.0 * 3.14159265358979323846 / 6.0) < 1e-12);
     CHECK(params.fill_holes == 1);
+    CHECK(params.threads == 0);
+    CHECK(params.snapshot == NULL && params.snapshot_user == NULL && params.snapshot_count == 0);
+    {
+        /* A caller compiled against 0.1.0, whose struct ends before the snapshot fields, is still served. */
+        dbrg_params older;
+        memset(&older, 0xab, sizeof older);
+        CHECK(dbrg_params_init_sized(&older, offsetof(dbrg_params, snapshot)) == DBRG_OK);
+        CHECK(older.struct_size == offsetof(dbrg_params, snapshot));
+        CHECK(dbrg_params_validate(&older, message, sizeof message) == DBRG_OK);
+        CHECK(dbrg_params_init_sized(&older, offsetof(dbrg_params, snapshot) - 1) == DBRG_ERR_INVALID_ARGUMENT);
+    }
     CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_OK);
     CHECK(message[0] == '\0');
     CHECK(dbrg_params_validate(NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);

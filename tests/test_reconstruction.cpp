@@ -208,3 +208,62 @@ TEST_CASE("the closed models of the shared data come out closed, and the bunny k
     // The scan has five openings at its base; the smallest one, 22 edges, may be filled.
     CHECK(test::report_of(bunny.positions, result.triangles).boundary_loops >= 4);
 }
+
+namespace {
+
+struct Snapshots {
+    std::vector<std::vector<uint32_t>> triangles;
+    std::vector<double> reached;
+    size_t cancel_at = SIZE_MAX;  // return non-zero from this call on
+
+    static int take(void* user, const uint32_t* triangles, uint32_t count, double points_reached) {
+        Snapshots& s = *static_cast<Snapshots*>(user);
+        s.triangles.emplace_back(triangles, triangles + 3 * size_t(count));
+        s.reached.push_back(points_reached);
+        return s.triangles.size() > s.cancel_at ? 1 : 0;
+    }
+};
+
+} // namespace
+
+TEST_CASE("snapshots show growth at evenly spaced shares of the points, each a valid manifold") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::torus, 3000);
+    const test::Reconstruction plain = test::reconstruct(xyz);
+    REQUIRE(plain.status == DBRG_OK);
+    for (uint32_t count : {1u, 5u}) {
+        CAPTURE(count);
+        Snapshots snapshots;
+        dbrg_params params;
+        dbrg_params_init(&params);
+        params.snapshot = Snapshots::take;
+        params.snapshot_user = &snapshots;
+        params.snapshot_count = count;
+        const test::Reconstruction result = test::reconstruct(xyz, &params);
+        REQUIRE(result.status == DBRG_OK);
+        CHECK(result.triangles == plain.triangles);  // watching does not change the outcome
+        REQUIRE(snapshots.triangles.size() == count);
+        for (size_t k = 0; k < count; ++k) {
+            CAPTURE(k);
+            if (k + 1 < count) {
+                CHECK(snapshots.reached[k] >= double(k + 1) / count);
+                CHECK(snapshots.reached[k] < double(k + 1) / count + 0.01);  // taken as the share is passed
+            }
+            if (k > 0) CHECK(snapshots.triangles[k].size() > snapshots.triangles[k - 1].size());
+            test::require_valid_manifold(test::report_of(xyz, snapshots.triangles[k]));
+        }
+        CHECK(snapshots.reached.back() > 0.99);
+    }
+}
+
+TEST_CASE("a snapshot callback can cancel") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
+    Snapshots snapshots;
+    snapshots.cancel_at = 1;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.snapshot = Snapshots::take;
+    params.snapshot_user = &snapshots;
+    params.snapshot_count = 4;
+    CHECK(test::reconstruct(xyz, &params).status == DBRG_ERR_CANCELLED);
+    CHECK(snapshots.triangles.size() == 2);
+}

@@ -35,12 +35,12 @@ struct Setup {
     Surface surface;
 };
 
-bool surface_is_valid(void* checks, const Surface& surface) {
+dbrg_status surface_is_valid(void* checks, const Surface& surface, double) {
     ++*static_cast<uint32_t*>(checks);
     char message[200];
     const bool valid = surface.validate(message, sizeof message);
     if (!valid) MESSAGE(message);
-    return valid;
+    return valid ? DBRG_OK : DBRG_ERR_INTERNAL;
 }
 
 uint32_t boundary_halfedges(const Surface& surface) {

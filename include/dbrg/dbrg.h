@@ -122,6 +122,12 @@ typedef int (*dbrg_progress_fn)(void* user, dbrg_stage stage, double fraction);
  * call only and never keeps the pointer.
  * ---------------------------------------------------------------------------------------------- */
 
+/* EXPERIMENTAL. A stage of growth, for pictures like the paper's Figures 1, 7 and 8: `triangles` holds
+ * the `triangle_count` triangles grown so far as index triples into the caller's points (valid during
+ * the call only); `points_reached` is the share of the distinct points the surface has reached. Return
+ * non-zero to cancel the call (it then returns DBRG_ERR_CANCELLED). */
+typedef int (*dbrg_snapshot_fn)(void* user, const uint32_t* triangles, uint32_t triangle_count, double points_reached);
+
 typedef enum dbrg_scalar_type {
     DBRG_FLOAT32 = 0,
     DBRG_FLOAT64 = 1
@@ -184,6 +190,15 @@ typedef struct dbrg_params {
     /* NULL: no progress reports. */
     dbrg_progress_fn progress;
     void* progress_user;
+
+    /* Fields added after version 0.1.0 (an older caller's struct_size leaves them at their defaults). */
+
+    /* EXPERIMENTAL. NULL (the default) or 0 snapshots: none. Otherwise called on the calling thread up to
+     * `snapshot_count` times while the surface grows: when the share of points reached first passes
+     * 1/K, 2/K, ... (K = snapshot_count) and once when growing ends, before hole filling. */
+    dbrg_snapshot_fn snapshot;
+    void* snapshot_user;
+    uint32_t snapshot_count;
 } dbrg_params;
 
 /* Fills the first `struct_size` bytes of `params` with the defaults (the paper's values where it gives

@@ -39,6 +39,9 @@ const char* const RECONSTRUCT_USAGE =
     "  --backend builtin|tetgen the Delaunay tetrahedralization to use (default builtin)\n"
     "  --threads N              threads for the stages that split (0: all, default; 1: none);\n"
     "                           the mesh is the same for any N\n"
+    "  --snapshots K            also write the surface at K evenly spaced stages of growth (points\n"
+    "                           reached: 1/K, 2/K, ..., end of growing) as OUTPUT with .growth-1 ...\n"
+    "                           .growth-K before its extension\n"
     "  --stats-json FILE        write figures about the run as JSON (- for standard output)\n"
     "  -q, --quiet              no progress bar\n"
     "  -h, --help               show this help\n";
@@ -66,6 +69,9 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
     }
     if (args.has("--max-components") && !parse_count(args.value("--max-components"), params.max_components)) {
         return error = "--max-components takes a whole number", false;
+    }
+    if (args.has("--snapshots") && !parse_count(args.value("--snapshots"), params.snapshot_count)) {
+        return error = "--snapshots takes a whole number", false;
     }
     if (args.has("--threads") && !parse_count(args.value("--threads"), params.threads)) {
         return error = "--threads takes a whole number", false;
@@ -98,6 +104,31 @@ bool load_points(const ParsedArgs& args, io::MeshData& points, std::string& erro
     points.positions = samples::sample(shape, count);
     return true;
 }
+
+// --snapshots: each stage of growth is written next to OUTPUT, with all input points as vertices.
+struct SnapshotFiles {
+    io::MeshData* mesh;
+    std::string output;
+    uint32_t written = 0;
+    std::string error;
+
+    // OUTPUT with ".growth-<k>" before its extension (format_from_path has found one).
+    std::string path(uint32_t k) const {
+        const size_t dot = output.find_last_of('.');
+        return output.substr(0, dot) + ".growth-" + std::to_string(k) + output.substr(dot);
+    }
+
+    static int write(void* user, const uint32_t* triangles, uint32_t triangle_count, double) {
+        SnapshotFiles& files = *static_cast<SnapshotFiles*>(user);
+        files.mesh->triangles.assign(triangles, triangles + 3 * size_t(triangle_count));
+        files.mesh->has_faces = true;
+        const io::IoStatus status = io::write_mesh(files.path(++files.written), *files.mesh);
+        files.mesh->triangles.clear();
+        if (status) return 0;
+        files.error = status.message;
+        return 1;  // stops the reconstruction
+    }
+};
 
 std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double seconds_read, double seconds_write) {
     io::JsonObject json;
@@ -149,7 +180,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--demo-points", nullptr, true},  {"--boundary-factor", nullptr, true}, {"--boundary-mean", nullptr, true},
         {"--sliver-angle", nullptr, true}, {"--no-fill-holes", nullptr, false},  {"--max-hole-edges", nullptr, true},
         {"--max-components", nullptr, true}, {"--backend", nullptr, true},       {"--stats-json", nullptr, true},
-        {"--threads", nullptr, true},      {"--quiet", "-q", false},
+        {"--threads", nullptr, true},      {"--snapshots", nullptr, true},       {"--quiet", "-q", false},
     };
     ParsedArgs args;
     std::string error;
@@ -181,10 +212,19 @@ int run_reconstruct(int argc, char** argv) {
     ProgressBar bar(!args.has("--quiet"));
     params.progress = ProgressBar::callback;
     params.progress_user = &bar;
+    SnapshotFiles snapshots{&mesh, output, 0, {}};
+    if (params.snapshot_count > 0) {
+        params.snapshot = SnapshotFiles::write;
+        params.snapshot_user = &snapshots;
+    }
     const dbrg_points points{mesh.positions.data(), mesh.vertex_count(), 3 * sizeof(double), DBRG_FLOAT64};
     dbrg_mesh* result = nullptr;
     const dbrg_status status = dbrg_reconstruct(&points, &params, &result);
     bar.finish();
+    if (!snapshots.error.empty()) {
+        dbrg_mesh_destroy(result);
+        return report_error(EXIT_FAILED, snapshots.error);
+    }
     if (status != DBRG_OK) {
         const std::string message = result ? dbrg_mesh_message(result) : "out of memory";
         dbrg_mesh_destroy(result);

@@ -450,9 +450,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     if (!open_.resize((size_t(cause_halfedges_) + 7) / 8, 0)) {
         return context_.fail_out_of_memory();
     }
-    if (observer_ && !observer_(observer_user_, surface_)) {
-        return context_.fail(DBRG_ERR_INTERNAL, "the surface failed its check after face %u was added", f);
-    }
+    if (observer_) DBRG_PROPAGATE(observer_(observer_user_, surface_, double(used_vertices_) / delaunay_.vertex_count()));
     for (uint32_t i = 0; i < 3; ++i) {
         if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, nullptr));
     }

@@ -34,8 +34,9 @@ public:
     // changed around it since it was last examined. Adds context.stats.hole_triangles_delaunay.
     dbrg_status regrow_holes();
 
-    // For tests: called after every face added to S; returning false stops growing with DBRG_ERR_INTERNAL.
-    using StepObserver = bool (*)(void* user, const Surface& surface);
+    // Called after every face added to S with the share of points S has reached (tests check S after
+    // every step; the pipeline takes snapshots). A status other than DBRG_OK stops growing with it.
+    using StepObserver = dbrg_status (*)(void* user, const Surface& surface, double points_reached);
     void observe_steps(StepObserver observer, void* user) {
         observer_ = observer;
         observer_user_ = user;

@@ -74,6 +74,7 @@ dbrg_allocator._fields_ = [
 
 # int (*)(void* user, dbrg_stage stage, double fraction)
 PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_enum, c_double)
+SNAPSHOT_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(c_uint32), c_uint32, c_double)
 
 
 class dbrg_points(ctypes.Structure):
@@ -99,6 +100,9 @@ class dbrg_params(ctypes.Structure):
         ("allocator", POINTER(dbrg_allocator)),
         ("progress", PROGRESS_FN),
         ("progress_user", c_void_p),
+        ("snapshot", SNAPSHOT_FN),
+        ("snapshot_user", c_void_p),
+        ("snapshot_count", c_uint32),
     ]
 
 

@@ -236,6 +236,9 @@ fn default_raw_params() -> sys::dbrg_params {
         allocator: ptr::null(),
         progress: None,
         progress_user: ptr::null_mut(),
+        snapshot: None,
+        snapshot_user: ptr::null_mut(),
+        snapshot_count: 0,
     };
     // SAFETY: raw is a valid dbrg_params to write.
     let status = unsafe { sys::dbrg_params_init_sized(&mut raw, std::mem::size_of::<sys::dbrg_params>()) };

@@ -61,6 +61,9 @@ pub struct dbrg_allocator {
 }
 
 pub type dbrg_progress_fn = Option<unsafe extern "C" fn(user: *mut c_void, stage: dbrg_stage, fraction: f64) -> c_int>;
+pub type dbrg_snapshot_fn = Option<
+    unsafe extern "C" fn(user: *mut c_void, triangles: *const u32, triangle_count: u32, points_reached: f64) -> c_int,
+>;
 
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
@@ -86,6 +89,9 @@ pub struct dbrg_params {
     pub allocator: *const dbrg_allocator,
     pub progress: dbrg_progress_fn,
     pub progress_user: *mut c_void,
+    pub snapshot: dbrg_snapshot_fn,
+    pub snapshot_user: *mut c_void,
+    pub snapshot_count: u32,
 }
 
 #[repr(C)]

@@ -1,0 +1,50 @@
+// Growth snapshots: the surface at evenly spaced stages of growth for the caller's snapshot callback.
+#include "growth_snapshots.h"
+
+#include "core/status.h"
+
+namespace dbrg {
+
+GrowthSnapshots::GrowthSnapshots(const ConditionedPoints& points, Context& context)
+    : points_(points), context_(context), triangles_(context.memory) {}
+
+void GrowthSnapshots::attach(RegionGrower& grower) {
+    if (wanted()) grower.observe_steps(on_step, this);
+}
+
+dbrg_status GrowthSnapshots::on_step(void* self, const Surface& surface, double points_reached) {
+    GrowthSnapshots& snapshots = *static_cast<GrowthSnapshots*>(self);
+    if (snapshots.finished_) return DBRG_OK;  // hole filling grows S again through the same grower
+    const uint32_t count = snapshots.context_.params.snapshot_count;
+    // Thresholds 1/K .. (K - 1)/K while growing; finish() takes the K-th. One face adds at most three
+    // points, so on a small input one step may pass several thresholds: each gets its call.
+    while (snapshots.taken_ + 1 < count && points_reached * count >= snapshots.taken_ + 1) {
+        ++snapshots.taken_;
+        DBRG_PROPAGATE(snapshots.take(surface, points_reached));
+    }
+    return DBRG_OK;
+}
+
+dbrg_status GrowthSnapshots::finish(const Surface& surface) {
+    if (!wanted()) return DBRG_OK;
+    finished_ = true;
+    uint32_t used = 0;
+    for (uint32_t v = 0; v < surface.vertex_count(); ++v) used += surface.is_used(v) ? 1 : 0;
+    return take(surface, surface.vertex_count() ? double(used) / surface.vertex_count() : 0.0);
+}
+
+dbrg_status GrowthSnapshots::take(const Surface& surface, double points_reached) {
+    triangles_.clear();
+    if (!triangles_.reserve(3 * size_t(surface.live_face_count()))) return context_.fail_out_of_memory();
+    for (uint32_t f = 0; f < surface.face_count(); ++f) {
+        if (surface.face_removed(f)) continue;
+        for (uint32_t i = 0; i < 3; ++i) triangles_.push_back(points_.input_index[surface.corner(f, i)]);
+    }
+    const uint32_t triangles = static_cast<uint32_t>(triangles_.size() / 3);
+    if (context_.params.snapshot(context_.params.snapshot_user, triangles_.data(), triangles, points_reached) != 0) {
+        return context_.fail_cancelled();
+    }
+    return DBRG_OK;
+}
+
+} // namespace dbrg
