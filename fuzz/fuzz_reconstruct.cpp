@@ -37,6 +37,7 @@ const uint32_t HOLE_EDGES[] = {64, 3, 4, 1000, UINT32_MAX, 2, 0};
 const uint32_t COMPONENTS[] = {64, 1, 2, UINT32_MAX, 0};
 const uint32_t ENUM_VALUES[] = {0, 1, 0, 1, 2, UINT32_MAX};
 const uint32_t THREADS[] = {1, 0, 2, 4};
+const uint32_t SNAPSHOT_COUNTS[] = {0, 0, 1, 3, 64};
 // Ours, a newer caller's, a 0.1.0 caller's (without the snapshot fields), and two sizes no version has.
 const size_t STRUCT_SIZES[] = {sizeof(dbrg_params), sizeof(dbrg_params), sizeof(dbrg_params) + 8,
                                offsetof(dbrg_params, snapshot), offsetof(dbrg_params, snapshot) - 8, 0};
@@ -65,6 +66,23 @@ struct ProgressProbe {
     }
 };
 
+// Checks every growth snapshot: at most the count asked for, triangles over the caller's points, the share
+// of points reached within [0, 1] and never falling.
+struct SnapshotProbe {
+    size_t point_count = 0;
+    uint32_t calls = 0;
+    double reached = 0;
+
+    static int take(void* user, const uint32_t* triangles, uint32_t triangle_count, double points_reached) {
+        SnapshotProbe& self = *static_cast<SnapshotProbe*>(user);
+        ++self.calls;
+        FUZZ_CHECK(points_reached >= self.reached && points_reached <= 1.0);
+        self.reached = points_reached;
+        for (size_t i = 0; i < 3 * size_t(triangle_count); ++i) FUZZ_CHECK(triangles[i] < self.point_count);
+        return 0;
+    }
+};
+
 // Stores any int in an enum field, as a C caller may: the library must check it without undefined behaviour.
 template <class Enum>
 void store_enum(Enum& field, uint32_t value) {
@@ -83,6 +101,7 @@ dbrg_params produce_params(FuzzInput& input) {
     params.max_components = input.pick(COMPONENTS);
     store_enum(params.backend, input.pick(ENUM_VALUES));
     params.threads = input.pick(THREADS);
+    params.snapshot_count = input.pick(SNAPSHOT_COUNTS);
     params.struct_size = input.pick(STRUCT_SIZES);
     return params;
 }
@@ -316,6 +335,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
     const PointSet set = produce_points(input, MAX_POINTS);
     dbrg_points points = set.points();
+    SnapshotProbe snapshots;
+    snapshots.point_count = points.count;
+    params.snapshot = SnapshotProbe::take;
+    params.snapshot_user = &snapshots;
+    // A caller of 0.1.0 (a struct without the snapshot fields) gets none.
+    const uint32_t snapshots_asked = params.struct_size > offsetof(dbrg_params, snapshot) ? params.snapshot_count : 0;
     mangle_points(mangle, mangle_amount, points);
     // NaN has no place in an ordered map; sets with one are judged before duplicates matter.
     const std::vector<uint32_t> canonical = set.finite ? canonical_indices(set.xyz) : std::vector<uint32_t>();
@@ -335,6 +360,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             (flexible && expected == DBRG_OK && (status == DBRG_ERR_TOO_FEW_POINTS || status == DBRG_ERR_DEGENERATE_INPUT));
         FUZZ_CHECK_WHY(acceptable, why.c_str());
     }
+    FUZZ_CHECK_WHY(snapshots.calls <= snapshots_asked, "more snapshots than asked for");
+    if (status == DBRG_OK && snapshots_asked > 0) FUZZ_CHECK_WHY(snapshots.calls >= 1, "no snapshot at the end of growing");
     if (mangle == Mangle::lying_count) FUZZ_CHECK_WHY(allocator.largest_request() < 4096, "a lying count made the library allocate");
 
     // Out of memory before the result object exists is the one case without one.

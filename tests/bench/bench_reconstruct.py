@@ -6,6 +6,7 @@ it. Not a test: run it by hand on a release build.
     python3 tests/bench/bench_reconstruct.py [--dbrg build/src/cli/dbrg] [--data ../shared/data] [--large]
     python3 tests/bench/bench_reconstruct.py --holes     # boundaries before and after hole filling
     python3 tests/bench/bench_reconstruct.py --cgal      # against CGAL's advancing front, same inputs
+    python3 tests/bench/bench_reconstruct.py --threads 2 # one thread against two on the large samples
 
 Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself) and
 generated samples of closed and open shapes (100k points; 1M and 2M too with --large). With --holes: the
@@ -73,18 +74,52 @@ def hole_table(dbrg, inputs, workdir):
               f"| {'-' if recall is None else f'{recall:.3f}'} |", flush=True)
 
 
+def sample_file(dbrg, source, workdir):
+    """A generated source ('demo', shape, points) written to a point file once; files stay as they are."""
+    if not isinstance(source, tuple):
+        return source
+    _, shape, points = source
+    path = os.path.join(workdir, f"{shape}-{points}.ply")
+    if not os.path.exists(path):
+        subprocess.run([dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points),
+                        "-o", path, "--quiet"], check=True)
+    return path
+
+
+def compare_threads(dbrg, threads, inputs, workdir, repeats=3):
+    """One thread against `threads`, the best of `repeats` runs each (read and write included), and whether
+    the two meshes are byte-identical."""
+    print(f"| input | n | 1 thread s | {threads} threads s | speed-up | validate s (1 / {threads}) "
+          f"| Delaunay s (1 / {threads}) | same mesh |")
+    print("|---|" + "---:|" * 6 + "---|")
+    for name, source, _ in inputs:
+        path = sample_file(dbrg, source, workdir)
+        best, meshes = {}, {}
+        for count in (1, threads):
+            output = os.path.join(workdir, f"threads-{count}.ply")
+            for _ in range(repeats):
+                stats = run_json([dbrg, "reconstruct", path, "-o", output, "--quiet", "--threads", str(count),
+                                  "--stats-json", "-"])
+                stats["wall"] = stats["seconds_read"] + stats["seconds_total"] + stats["seconds_write"]
+                if count not in best or stats["wall"] < best[count]["wall"]:
+                    best[count] = stats
+            with open(output, "rb") as f:
+                meshes[count] = f.read()
+        one, many = best[1], best[threads]
+        print(f"| {name} | {one['points']} | {one['wall']:.3f} | {many['wall']:.3f} "
+              f"| {one['wall'] / max(many['wall'], 1e-9):.2f}x "
+              f"| {one['seconds_validate']:.3f} / {many['seconds_validate']:.3f} "
+              f"| {one['seconds_delaunay']:.3f} / {many['seconds_delaunay']:.3f} "
+              f"| {'yes' if meshes[1] == meshes[threads] else 'NO'} |", flush=True)
+
+
 def compare_with_cgal(dbrg, cgal, inputs, workdir):
     """dbrg against CGAL's advancing-front reconstruction on the same point files, in the same run."""
     print("| input | n | dbrg s | CGAL AFSR s | speed-up | dbrg recall | CGAL recall | dbrg boundary edges "
           "| CGAL boundary edges | dbrg non-manifold edges / vertices | CGAL non-manifold edges / vertices |")
     print("|---|" + "---:|" * 10)
     for name, source, reference in inputs:
-        if isinstance(source, tuple):  # generated: write the sample to a file both programs read
-            _, shape, points = source
-            path = os.path.join(workdir, f"{shape}.ply")
-            subprocess.run([dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points),
-                            "-o", path, "--quiet"], check=True)
-            source = path
+        source = sample_file(dbrg, source, workdir)  # generated: one file both programs read
         ours, our_report = measure(dbrg, source, workdir, reference)
         theirs_path = os.path.join(workdir, "cgal.ply")
         theirs = run_json([cgal, source, theirs_path])
@@ -107,6 +142,8 @@ def main():
     parser.add_argument("--cgal", action="store_true",
                         help="compare with CGAL's advancing front (build tests/bench/cgal-advancing-front first; "
                              "needs libcgal-dev)")
+    parser.add_argument("--threads", type=int, metavar="N",
+                        help="one thread against N on the inputs of 100k points or more (and the same mesh?)")
     args = parser.parse_args()
 
     inputs = []
@@ -128,6 +165,10 @@ def main():
         for shape in ("torus", "bumpy_sphere", "saddle"):
             inputs.append((f"{shape} {points // 1000}k", ("demo", shape, points), None))
 
+    if args.threads:
+        with tempfile.TemporaryDirectory() as workdir:
+            compare_threads(args.dbrg, args.threads, [i for i in inputs if isinstance(i[1], tuple)], workdir)
+        return
     if args.cgal:
         cgal = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(args.dbrg)))),
                             "tests", "bench", "cgal-advancing-front")
