@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <math.h>
 
+#include "core/intrinsics.h"
 #include "core/status.h"
 #include "holes/hole_filling.h"
 
@@ -363,7 +364,7 @@ dbrg_status HoleFiller::remove_small_handles() {
             for (uint32_t w = 0; w < words; ++w) reduced[w] = candidate_class[size_t(i) * words + w];
             auto leading = [&](const uint64_t* c) -> int {
                 for (uint32_t w = words; w-- > 0;) {
-                    if (c[w] != 0) return int(64 * w + 63 - __builtin_clzll(c[w]));
+                    if (c[w] != 0) return int(64 * w + 63 - count_leading_zeros(c[w]));
                 }
                 return -1;
             };
