@@ -69,6 +69,7 @@ public:
 
     void pop_back() { --size_; }
     void clear() { size_ = 0; }
+    // Drops the elements from `size` on; the capacity stays (release() gives memory back).
     void shrink(size_t size) { if (size < size_) size_ = size; }
 
     // Gives the memory back to the allocator.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 
+#include "core/intrinsics.h"
 #include "core/status.h"
 #include "grow/triangle_geometry.h"
 #include "predicates/predicates.h"
@@ -351,7 +352,7 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
     };
     walk_edge_ring(delaunay_, surface_.face_tet(face), u, v, [&](uint32_t apex, uint32_t tet) {
         if (apex == INFINITE_VERTEX || apex == opposite) return;
-        __builtin_prefetch(delaunay_.point(apex));
+        prefetch(delaunay_.point(apex));
         apexes[n] = apex;
         tets[n++] = tet;
         if (n == BATCH) evaluate();

@@ -6,6 +6,7 @@
 // reconstruction from unorganized points", Computer-Aided Design 37 (2005), section 5.
 #include "holes/hole_filling.h"
 
+#include <assert.h>
 #include <math.h>
 
 #include "core/status.h"
@@ -59,32 +60,21 @@ dbrg_status HoleFiller::fill_holes() {
             return context_.fail_out_of_memory();
         }
     }
-    Journal journal(context_.memory);
+    FaceJournal journal(context_.memory);
     for (size_t i = 0; i < starts.size(); i += 2) {
-        journal.added.clear();
-        journal.removed.clear();
+        journal.clear();
         const uint32_t u = starts[i], v = starts[i + 1];
         const uint32_t start = surface_.find_halfedge(u, v);
         if (start == NO_HALFEDGE || !surface_.is_boundary(start)) continue;  // filled with another hole already
         if (!collect_hole(start, loop)) continue;
         // A long loop that some edges call a border (is_hole) is filled over its own vertices only: removing
         // grown faces to fill it would trade surface the data support for a closure they only half support.
-        uint32_t open_edges = 0;
-        for (uint32_t h : loop) open_edges += is_open_boundary(h) ? 1 : 0;
-        const uint32_t enlargements = open_edges > 0 && loop.size() > open_loop_limit() ? 0 : MAX_ENLARGEMENTS;
-        // An undone attempt restores faces under new ids: find the hole again by its first edge.
+        const bool border_like = count_open_edges(loop) > 0 && loop.size() > open_loop_limit();
         bool filled = false;
-        for (double fold_limit : {context_.params.sliver_angle, LAST_RESORT_FOLD_ANGLE}) {
-            if (filled || fold_limit < context_.params.sliver_angle) continue;
-            cos_fold_limit_ = cos(fold_limit);
-            const uint32_t edge = surface_.find_halfedge(u, v);
-            if (edge == NO_HALFEDGE || !surface_.is_boundary(edge)) break;
-            DBRG_PROPAGATE(fill_hole(edge, enlargements, journal, filled));
-            if (!filled) DBRG_PROPAGATE(undo(journal, 0, 0));
-        }
+        DBRG_PROPAGATE(fill_within_fold_limits(u, v, border_like ? 0 : MAX_ENLARGEMENTS, journal, filled));
         if (!filled) continue;
-        stats.hole_triangles_added += static_cast<uint32_t>(journal.added.size());
-        stats.hole_triangles_removed += static_cast<uint32_t>(journal.removed.size());
+        stats.hole_triangles_added += journal.added_count();
+        stats.hole_triangles_removed += journal.removed_count();
         DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 2) / double(starts.size())));
     }
     // Enlarging holes can cut a few faces off the rest; such an island is no object of its own.
@@ -102,39 +92,62 @@ bool HoleFiller::is_open_boundary(uint32_t h) const {
     return k < restored_open_.size() && restored_open_[k] != 0;
 }
 
+uint32_t HoleFiller::count_open_edges(const Array<uint32_t>& loop) const {
+    uint32_t open_edges = 0;
+    for (uint32_t h : loop) open_edges += is_open_boundary(h) ? 1 : 0;
+    return open_edges;
+}
+
 bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
     loop.clear();
-    uint32_t open_edges = 0;
     uint32_t h = start;
     do {
         if (loop.size() >= context_.params.max_hole_edges || !loop.push_back(h)) return false;
-        open_edges += is_open_boundary(h) ? 1 : 0;
         h = surface_.fan_exit(h);
     } while (h != start);
-    return filling_cut_ || is_hole(static_cast<uint32_t>(loop.size()), open_edges);
+    return filling_cut_ || is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop));
 }
 
 // Boundary loops that are holes (is_hole), of any length.
 uint32_t HoleFiller::count_holes() const {
     Array<uint8_t> seen(context_.memory);
+    Array<uint32_t> loop(context_.memory);
     const uint32_t halfedges = 3 * surface_.face_count();
     if (!seen.resize(halfedges, 0)) return 0;
     uint32_t holes = 0;
     for (uint32_t h = 0; h < halfedges; ++h) {
         if (!surface_.is_boundary(h) || seen[h]) continue;
-        uint32_t length = 0, open_edges = 0, g = h;
+        loop.clear();
+        uint32_t g = h;
         do {
             seen[g] = 1;
-            ++length;
-            open_edges += is_open_boundary(g) ? 1 : 0;
+            if (!loop.push_back(g)) return 0;
             g = surface_.fan_exit(g);
         } while (g != h);
-        holes += is_hole(length, open_edges) ? 1 : 0;
+        holes += is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop)) ? 1 : 0;
     }
     return holes;
 }
 
-dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, Journal& journal, bool& filled) {
+dbrg_status HoleFiller::fill_within_fold_limits(uint32_t u, uint32_t v, uint32_t enlargements, FaceJournal& journal,
+                                                bool& filled) {
+    filled = false;
+    const size_t position = journal.size();
+    for (double fold_limit : {context_.params.sliver_angle, LAST_RESORT_FOLD_ANGLE}) {
+        if (fold_limit < context_.params.sliver_angle) continue;
+        cos_fold_limit_ = cos(fold_limit);
+        // An undone attempt restores faces under new ids: find the hole again by its edge, which the
+        // exact undo has made a boundary edge again.
+        const uint32_t edge = surface_.find_halfedge(u, v);
+        assert(edge != NO_HALFEDGE && surface_.is_boundary(edge));
+        DBRG_PROPAGATE(fill_hole(edge, enlargements, journal, filled));
+        if (filled) return DBRG_OK;
+        DBRG_PROPAGATE(undo(journal, position));
+    }
+    return DBRG_OK;
+}
+
+dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, FaceJournal& journal, bool& filled) {
     filled = false;
     Array<uint32_t> loop(context_.memory);
     Array<uint32_t> corners(context_.memory);
@@ -142,13 +155,13 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, Journal
     if (!corners.reserve(loop.size())) return context_.fail_out_of_memory();
     for (uint32_t h : loop) corners.push_back(surface_.origin(h));
 
-    const size_t added_before = journal.added.size();
+    const size_t before_ears = journal.size();
     DBRG_PROPAGATE(clip_ears(corners, journal, filled));
     if (filled || enlargements == 0) return DBRG_OK;
 
     // §5: an ear is invalid, so take this attempt back, remove the hole's boundary triangles too, and fill
     // the larger hole that leaves instead.
-    DBRG_PROPAGATE(undo(journal, added_before, journal.removed.size()));
+    DBRG_PROPAGATE(undo(journal, before_ears));
     Array<uint32_t> new_starts(context_.memory);
     DBRG_PROPAGATE(enlarge(loop, journal, new_starts));
     for (uint32_t s : new_starts) {
@@ -163,7 +176,7 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, Journal
 
 // Paper §5, Fig. 9: ears at the concave corners (where the hole turns towards itself), smallest circumradius
 // first, each through the topological and geometrical examinations, until the hole is a triangle and closes.
-dbrg_status HoleFiller::clip_ears(Array<uint32_t>& corners, Journal& journal, bool& filled) {
+dbrg_status HoleFiller::clip_ears(Array<uint32_t>& corners, FaceJournal& journal, bool& filled) {
     filled = false;
     while (corners.size() >= 3) {
         const size_t n = corners.size();
@@ -214,7 +227,7 @@ bool HoleFiller::ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, b
 
 // Removes the faces along the hole (and any face whose removal pinched a vertex) and returns boundary
 // half-edges from which the larger hole or holes can be found.
-dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, Journal& journal, Array<uint32_t>& new_starts) {
+dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, FaceJournal& journal, Array<uint32_t>& new_starts) {
     Array<uint32_t> pinched(context_.memory);
     for (uint32_t h : loop) {
         const uint32_t f = Surface::face_of(h);
@@ -228,7 +241,7 @@ dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, Journal& journal, A
     if (!surface_.remove_pinches(pinched)) return context_.fail_out_of_memory();
     bool grown = true;
     for (uint32_t f : pinched) {
-        grown = grown && journal.removed.push_back(describe(f));
+        grown = grown && record_removed(f, journal);
         for (uint32_t i = 0; i < 3; ++i) {
             surface_.for_each_fan(surface_.corner(f, i), [&](uint32_t start) { grown = grown && new_starts.push_back(start); });
         }
@@ -243,45 +256,35 @@ dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, Journal& journal, A
     return DBRG_OK;
 }
 
-dbrg_status HoleFiller::remove_and_record(uint32_t f, Journal& journal) {
-    if (!journal.removed.push_back(describe(f)) || !surface_.remove_face(f)) return context_.fail_out_of_memory();
+dbrg_status HoleFiller::remove_and_record(uint32_t f, FaceJournal& journal) {
+    if (!record_removed(f, journal) || !surface_.remove_face(f)) return context_.fail_out_of_memory();
     return DBRG_OK;
 }
 
-// What it takes to put face f back as it was (its corners stay readable after removal).
-HoleFiller::RemovedFace HoleFiller::describe(uint32_t f) const {
-    RemovedFace record;
-    for (uint32_t i = 0; i < 3; ++i) {
-        record.corners[i] = surface_.corner(f, i);
-        record.causes[i] = is_open_boundary(3 * f + i) ? 1 : 0;
-    }
-    record.tet = surface_.face_tet(f);
-    return record;
+// Records face f (removed or about to be) with what it takes to put it back as it was: which of its edges
+// the open-surface test left.
+bool HoleFiller::record_removed(uint32_t f, FaceJournal& journal) const {
+    uint8_t causes[3];
+    for (uint32_t i = 0; i < 3; ++i) causes[i] = is_open_boundary(3 * f + i) ? 1 : 0;
+    return journal.record_removed(surface_, f, causes);
 }
 
-// Takes back the journal's entries from the given positions on: removes the faces added, then restores
-// the faces removed, in reverse order, which passes back through valid states only.
-dbrg_status HoleFiller::undo(Journal& journal, size_t added_from, size_t removed_from) {
-    while (journal.added.size() > added_from) {
-        const uint32_t f = journal.added.back();
-        journal.added.pop_back();
-        if (!surface_.face_removed(f) && !surface_.remove_face(f)) return context_.fail_out_of_memory();
-    }
-    while (journal.removed.size() > removed_from) {
-        const RemovedFace record = journal.removed.back();
-        journal.removed.pop_back();
-        DBRG_PROPAGATE(add_face(record.corners[0], record.corners[1], record.corners[2], record.tet, record.causes, nullptr));
-    }
-    return DBRG_OK;
+// Takes back the journal's entries from `position` on; restored faces get their open-surface marks back.
+dbrg_status HoleFiller::undo(FaceJournal& journal, size_t position) {
+    const bool undone = journal.undo(surface_, position, [&](const FaceJournal::Entry& face) {
+        return add_face(face.corners[0], face.corners[1], face.corners[2], face.tet, face.causes, nullptr) == DBRG_OK;
+    });
+    return undone ? DBRG_OK : context_.fail_out_of_memory();
 }
 
-dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, Journal* journal) {
+dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes,
+                                 FaceJournal* journal) {
     const uint32_t f = surface_.add_face(a, b, c, tet);
     if (f == NO_FACE) return context_.fail_out_of_memory();
     for (uint32_t i = 0; i < 3; ++i) {
         if (!restored_open_.push_back(causes ? causes[i] : 0)) return context_.fail_out_of_memory();
     }
-    if (journal && !journal->added.push_back(f)) return context_.fail_out_of_memory();
+    if (journal && !journal->record_added(surface_, f)) return context_.fail_out_of_memory();
     return DBRG_OK;
 }
 

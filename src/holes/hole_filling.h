@@ -13,6 +13,7 @@
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
+#include "holes/face_journal.h"
 #include "surface/surface.h"
 
 namespace dbrg {
@@ -40,18 +41,6 @@ private:
     // and a closed surface is worth a sharp fold there. Folding back completely is still refused.
     static constexpr double LAST_RESORT_FOLD_ANGLE = 175.0 * 3.14159265358979323846 / 180.0;
 
-    struct RemovedFace {
-        uint32_t corners[3];
-        uint32_t tet;
-        uint8_t causes[3];
-    };
-    // One hole's changes, so that a hole that cannot be filled is put back exactly as it was.
-    struct Journal {
-        explicit Journal(Memory& memory) : added(memory), removed(memory) {}
-        Array<uint32_t> added;
-        Array<RemovedFace> removed;
-    };
-
     dbrg_status fill_holes();
     // Topological noise removal (small_handles.cpp): cuts closed components along short non-separating
     // cycles and fills both sides.
@@ -60,6 +49,8 @@ private:
     double length_between(uint32_t a, uint32_t b) const;
 
     bool is_open_boundary(uint32_t halfedge) const;
+    // How many of the loop's boundary half-edges the open-surface test (§4) left.
+    uint32_t count_open_edges(const Array<uint32_t>& loop) const;
     // A loop that the open-surface test made but that is this short is a hole all the same: a real border
     // is long, while a short loop marks a jump in sampling density (as in CAD tessellations).
     uint32_t open_loop_limit() const { return context_.params.max_hole_edges / 4; }
@@ -77,15 +68,20 @@ private:
     // max_hole_edges, or when it is a border (is_hole).
     bool collect_hole(uint32_t start, Array<uint32_t>& loop) const;
     uint32_t count_holes() const;
+    // Fills the hole through the boundary half-edge from u to v within the sliver fold limit, and where
+    // that fails once more at LAST_RESORT_FOLD_ANGLE; a failed attempt is undone. Enlarges the hole at
+    // most `enlargements` times per attempt.
+    dbrg_status fill_within_fold_limits(uint32_t u, uint32_t v, uint32_t enlargements, FaceJournal& journal,
+                                        bool& filled);
     // Fills the hole through `start`, enlarging it (§5) at most `enlargements` more times.
-    dbrg_status fill_hole(uint32_t start, uint32_t enlargements, Journal& journal, bool& filled);
-    dbrg_status clip_ears(Array<uint32_t>& corners, Journal& journal, bool& filled);
+    dbrg_status fill_hole(uint32_t start, uint32_t enlargements, FaceJournal& journal, bool& filled);
+    dbrg_status clip_ears(Array<uint32_t>& corners, FaceJournal& journal, bool& filled);
     bool ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, bool closes_hole) const;
-    dbrg_status enlarge(const Array<uint32_t>& loop, Journal& journal, Array<uint32_t>& new_starts);
-    dbrg_status remove_and_record(uint32_t face, Journal& journal);
-    RemovedFace describe(uint32_t face) const;
-    dbrg_status undo(Journal& journal, size_t added_from, size_t removed_from);
-    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, Journal* journal);
+    dbrg_status enlarge(const Array<uint32_t>& loop, FaceJournal& journal, Array<uint32_t>& new_starts);
+    dbrg_status remove_and_record(uint32_t face, FaceJournal& journal);
+    bool record_removed(uint32_t face, FaceJournal& journal) const;
+    dbrg_status undo(FaceJournal& journal, size_t position);
+    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, FaceJournal* journal);
     Vec3 face_normal(uint32_t f) const;
     Vec3 vertex_normal(uint32_t v) const;
 

@@ -61,19 +61,14 @@ public:
     int quadruple(int i, int j, int k, int l, double* h) const {
         const int ijk = index_[i][j][k], ijl = index_[i][j][l], ikl = index_[i][k][l], jkl = index_[j][k][l];
         double negated_ijl[24], negated_jkl[24], left[48], right[48];
-        const int n_ijl = copy_negated(triple_[ijl], triple_length_[ijl], negated_ijl);
-        const int n_jkl = copy_negated(triple_[jkl], triple_length_[jkl], negated_jkl);
+        const int n_ijl = negate(triple_[ijl], triple_length_[ijl], negated_ijl);
+        const int n_jkl = negate(triple_[jkl], triple_length_[jkl], negated_jkl);
         const int n_left = sum(triple_[ijk], triple_length_[ijk], negated_ijl, n_ijl, left);
         const int n_right = sum(triple_[ikl], triple_length_[ikl], negated_jkl, n_jkl, right);
         return sum(left, n_left, right, n_right, h);
     }
 
 private:
-    static int copy_negated(const double* e, int n, double* h) {
-        for (int i = 0; i < n; ++i) h[i] = -e[i];
-        return n;
-    }
-
     // h (24) = det[p_i; p_j; p_k], expanded along the z column as det3 does.
     int triple(int i, int j, int k, double* h) const {
         double term1[8], term2[8], term3[8], term12[16];
@@ -110,7 +105,7 @@ int orient2d_raw(const double* p, const double* q, const double* r, int u, int v
     const int n_qr = minor2(q, r, u, v, qr);
     const int n_pr = minor2(p, r, u, v, pr);
     const int n_pq = minor2(p, q, u, v, pq);
-    negate(pr, n_pr);
+    negate(pr, n_pr, pr);
     const int n_left = sum(qr, n_qr, pr, n_pr, left);
     return sum(left, n_left, pq, n_pq, h);
 }
@@ -124,7 +119,7 @@ int insphere_translated(const double (*rows)[3]) {
             if (j != i) other[k++] = rows[j];
         double minor[24], lift[6];
         const int n_minor = det3(other[0], other[1], other[2], minor);
-        if (i % 2 == 0) negate(minor, n_minor);
+        if (i % 2 == 0) negate(minor, n_minor, minor);
         const int n_lift = squared_norm(rows[i][0], rows[i][1], rows[i][2], lift);
         total.add_product<48>(minor, n_minor, lift, n_lift);
     }
@@ -142,7 +137,7 @@ int insphere_raw(const double* const* points) {
             if (j != i) other[k++] = j;
         double minor[96], lift[6];
         const int n_minor = minors.quadruple(other[0], other[1], other[2], other[3], minor);
-        if (i % 2 == 0) negate(minor, n_minor);
+        if (i % 2 == 0) negate(minor, n_minor, minor);
         const int n_lift = squared_norm(points[i][0], points[i][1], points[i][2], lift);
         total.add_product<192>(minor, n_minor, lift, n_lift);
     }
@@ -158,7 +153,7 @@ int incircle_translated(const double (*rows)[3], int u, int v) {
             if (j != i) other[k++] = rows[j];
         double minor[4], lift[6];
         const int n_minor = minor2(other[0], other[1], u, v, minor);
-        if (i % 2 == 1) negate(minor, n_minor);
+        if (i % 2 == 1) negate(minor, n_minor, minor);
         const int n_lift = squared_norm(rows[i][0], rows[i][1], rows[i][2], lift);
         total.add_product<8>(minor, n_minor, lift, n_lift);
     }
@@ -174,7 +169,7 @@ int incircle_raw(const double* const* points, int u, int v) {
             if (j != i) other[k++] = points[j];
         double minor[12], lift[6];
         const int n_minor = orient2d_raw(other[0], other[1], other[2], u, v, minor);
-        if (i % 2 == 1) negate(minor, n_minor);
+        if (i % 2 == 1) negate(minor, n_minor, minor);
         const int n_lift = squared_norm(points[i][0], points[i][1], points[i][2], lift);
         total.add_product<24>(minor, n_minor, lift, n_lift);
     }

@@ -90,8 +90,10 @@ inline int scale(const double* e, int ne, double b, double* h) {
     return n;
 }
 
-inline void negate(double* e, int ne) {
-    for (int i = 0; i < ne; ++i) e[i] = -e[i];
+// h = -e, exactly; h may be e. Returns the length of h.
+inline int negate(const double* e, int ne, double* h) {
+    for (int i = 0; i < ne; ++i) h[i] = -e[i];
+    return ne;
 }
 
 // The sign of an expansion is the sign of its largest component (zero elimination keeps it non-zero
@@ -103,7 +105,7 @@ inline int product_difference(double a, double b, double c, double d, double* h)
     double ab[2], cd[2];
     two_product(a, b, ab[1], ab[0]);
     two_product(c, d, cd[1], cd[0]);
-    negate(cd, 2);
+    negate(cd, 2, cd);
     return sum(ab, 2, cd, 2, h);
 }
 
