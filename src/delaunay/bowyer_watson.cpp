@@ -13,6 +13,7 @@
 #include <unistd.h>
 #endif
 
+#include "core/intrinsics.h"
 #include "core/parallel.h"
 #include "core/status.h"
 #include "delaunay/affine_checks.h"
@@ -81,15 +82,6 @@ struct FiledFace {
     uint32_t entry;  // where in the table it was filed (faces filed only)
 };
 
-// A hint to the processor that `address` is needed soon. The tetrahedron store is far larger than the
-// caches, and the cavity search otherwise waits for each neighbour's record in turn.
-inline void prefetch(const void* address) {
-#if defined(__GNUC__)
-    __builtin_prefetch(address);
-#else
-    (void)address;
-#endif
-}
 
 // Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
 // page fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
