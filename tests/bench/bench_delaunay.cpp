@@ -119,6 +119,7 @@ Measure run_engine(Engine engine, const Dataset& data) {
     dbrg_params params;
     memset(&params, 0, sizeof params);
     params.struct_size = sizeof params;
+    params.threads = 1;  // single-threaded, like the engines it is compared with
     const size_t n = data.xyz.size() / 3;
     if (engine == CGAL) {
 #if DBRG_BENCH_HAVE_CGAL

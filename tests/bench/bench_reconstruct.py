@@ -36,7 +36,8 @@ def measure(dbrg, source, workdir, reference=None, options=()):
         command = [dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points)]
     else:
         command = [dbrg, "reconstruct", source]
-    stats = run_json(command + list(options) + ["-o", output, "--quiet", "--stats-json", "-"])
+    # One thread, like CGAL's advancing front; --threads N measures the second core separately.
+    stats = run_json(command + ["--threads", "1"] + list(options) + ["-o", output, "--quiet", "--stats-json", "-"])
     stats_command = [dbrg, "stats", output]
     if reference:
         stats_command += ["--reference", reference]
