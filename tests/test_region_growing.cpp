@@ -10,6 +10,7 @@
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
+#include "grow/triangle_geometry.h"
 #include "samples/samples.h"
 #include "surface/surface.h"
 
@@ -66,6 +67,21 @@ TEST_CASE("the surface is a valid oriented manifold after every insertion") {
         CHECK(checks == setup.surface.face_count());
         CHECK(checks > 1000);
     }
+}
+
+TEST_CASE("diametral balls and tetrahedron circumradii, which rank the two ways through a tetrahedron") {
+    // A quadrilateral a, c, b, d in the plane z = 0, with diagonal a-b the Delaunay one: d is outside the
+    // circle through a, b, c, but b is inside the one through a, c, d.
+    const double a[3] = {-1, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1.1, 0}, d[3] = {0, -1.1, 0};
+    CHECK_FALSE(in_diametral_ball(a, b, c, d));
+    CHECK(in_diametral_ball(a, c, d, b));
+    // The diametral ball is the smallest through the triangle: a point off its plane but within it counts.
+    const double above[3] = {0, 0.3, 0.5};
+    CHECK(in_diametral_ball(a, b, c, above));
+    // A regular tetrahedron of edge sqrt(8) has circumradius sqrt(3); coplanar corners have none.
+    const double p[3] = {1, 1, 1}, q[3] = {1, -1, -1}, r[3] = {-1, 1, -1}, s[3] = {-1, -1, 1};
+    CHECK(tet_circumradius(p, q, r, s) == doctest::Approx(std::sqrt(3.0)));
+    CHECK(tet_circumradius(a, b, c, d) == HUGE_VAL);
 }
 
 TEST_CASE("growing starts from the highest point's smallest Delaunay triangle, facing up") {

@@ -27,7 +27,8 @@ public:
     RegionGrower(const Tetrahedralization& delaunay, Surface& surface, Context& context);
 
     // Grows S from the highest point, then from further seeds while unused points can start a
-    // component of their own (up to params.max_components). Fills the growing fields of context.stats.
+    // component of their own (up to params.max_components), then flips edges inside S to the smaller
+    // Delaunay balls (flip_to_smaller_balls). Fills the growing fields of context.stats.
     dbrg_status grow();
 
     // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
@@ -65,6 +66,11 @@ private:
     bool enqueue(const Candidate& candidate);
     void release_queues();
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
+    dbrg_status flip_to_smaller_balls();
+    dbrg_status flip_if_smaller(uint32_t halfedge);
+    uint32_t tet_with_corners(uint32_t tet, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const;
+    uint32_t fourth_corner(uint32_t tet, uint32_t u, uint32_t v, uint32_t w) const;
+    double ball_radius(uint32_t u, uint32_t v, uint32_t w, uint32_t tet) const;
     dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed);
     dbrg_status resolve_pinches(Array<uint32_t>& removed);
     dbrg_status remove_islands();
