@@ -452,7 +452,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     if (!open_.resize((size_t(cause_halfedges_) + 7) / 8, 0)) {
         return context_.fail_out_of_memory();
     }
-    if (observer_) DBRG_PROPAGATE(observer_(observer_user_, surface_, double(used_vertices_) / delaunay_.vertex_count()));
+    DBRG_PROPAGATE(report_step());
     for (uint32_t i = 0; i < 3; ++i) {
         if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, nullptr));
     }
@@ -524,9 +524,7 @@ dbrg_status RegionGrower::flip_if_smaller(uint32_t halfedge) {
         }
         if (surface_.add_face(corners[0], corners[1], corners[2], tet, check) == NO_FACE) return context_.fail_out_of_memory();
         radius_sum_ += circumradius(delaunay_.point(corners[0]), delaunay_.point(corners[1]), delaunay_.point(corners[2]));
-        if (observer_ && !observer_(observer_user_, surface_)) {
-            return context_.fail(DBRG_ERR_INTERNAL, "the surface failed its check during an edge flip");
-        }
+        DBRG_PROPAGATE(report_step());
     }
     return DBRG_OK;
 }
@@ -575,6 +573,11 @@ double RegionGrower::ball_radius(uint32_t u, uint32_t v, uint32_t w, uint32_t t)
                                 delaunay_.point(corners[3]));
     }
     return circumradius(delaunay_.point(corners[0]), delaunay_.point(corners[1]), delaunay_.point(corners[2]));
+}
+
+// Tells the step observer, if any, that S has changed.
+dbrg_status RegionGrower::report_step() const {
+    return observer_ ? observer_(observer_user_, surface_, double(used_vertices_) / delaunay_.vertex_count()) : DBRG_OK;
 }
 
 dbrg_status RegionGrower::regrow_holes() {

@@ -66,6 +66,7 @@ private:
     bool enqueue(const Candidate& candidate);
     void release_queues();
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
+    dbrg_status report_step() const;
     dbrg_status flip_to_smaller_balls();
     dbrg_status flip_if_smaller(uint32_t halfedge);
     uint32_t tet_with_corners(uint32_t tet, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const;
