@@ -16,21 +16,20 @@ dbrg_status GrowthSnapshots::on_step(void* self, const Surface& surface, double 
     GrowthSnapshots& snapshots = *static_cast<GrowthSnapshots*>(self);
     if (snapshots.finished_) return DBRG_OK;  // hole filling grows S again through the same grower
     const uint32_t count = snapshots.context_.params.snapshot_count;
-    // Thresholds 1/K .. (K - 1)/K while growing; finish() takes the K-th. One face adds at most three
-    // points, so on a small input one step may pass several thresholds: each gets its call.
-    while (snapshots.taken_ + 1 < count && points_reached * count >= snapshots.taken_ + 1) {
-        ++snapshots.taken_;
-        DBRG_PROPAGATE(snapshots.take(surface, points_reached));
-    }
-    return DBRG_OK;
+    // Thresholds 1/K .. (K - 1)/K while growing; finish() takes the K-th. A step that passes several
+    // (a small input, a large K) takes one snapshot for all of them, so there are never more calls than
+    // steps, whatever K is.
+    const uint32_t passed = snapshots.taken_;
+    while (snapshots.taken_ + 1 < count && points_reached * count >= snapshots.taken_ + 1) ++snapshots.taken_;
+    return snapshots.taken_ > passed ? snapshots.take(surface, points_reached) : DBRG_OK;
 }
 
 dbrg_status GrowthSnapshots::finish(const Surface& surface) {
     if (!wanted()) return DBRG_OK;
     finished_ = true;
-    uint32_t used = 0;
-    for (uint32_t v = 0; v < surface.vertex_count(); ++v) used += surface.is_used(v) ? 1 : 0;
-    return take(surface, surface.vertex_count() ? double(used) / surface.vertex_count() : 0.0);
+    const dbrg_status status = take(surface, double(surface.used_vertex_count()) / surface.vertex_count());
+    triangles_.release();  // hole filling follows: its memory is worth more
+    return status;
 }
 
 dbrg_status GrowthSnapshots::take(const Surface& surface, double points_reached) {
@@ -42,7 +41,7 @@ dbrg_status GrowthSnapshots::take(const Surface& surface, double points_reached)
     }
     const uint32_t triangles = static_cast<uint32_t>(triangles_.size() / 3);
     if (context_.params.snapshot(context_.params.snapshot_user, triangles_.data(), triangles, points_reached) != 0) {
-        return context_.fail_cancelled();
+        return context_.fail(DBRG_ERR_CANCELLED, "cancelled by the snapshot callback");
     }
     return DBRG_OK;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
@@ -235,6 +236,13 @@ TEST_CASE("file errors name the path") {
     CHECK(status.message.find("/nonexistent/dir/out.obj") != std::string::npos);
     status = read_mesh("/", mesh);
     CHECK_FALSE(status.ok);
+    // A directory with a mesh's name: said plainly (it once surfaced as a string-reserve exception).
+    const std::string directory = (std::filesystem::temp_directory_path() / "dbrg_test_directory.ply").string();
+    std::filesystem::create_directory(directory);
+    status = read_mesh(directory, mesh);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message == directory + ": a directory, not a file");
+    std::filesystem::remove(directory);
 }
 
 TEST_CASE("writers refuse malformed meshes") {

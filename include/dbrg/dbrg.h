@@ -124,8 +124,11 @@ typedef int (*dbrg_progress_fn)(void* user, dbrg_stage stage, double fraction);
 
 /* EXPERIMENTAL. A stage of growth, for pictures like the paper's Figures 1, 7 and 8: `triangles` holds
  * the `triangle_count` triangles grown so far as index triples into the caller's points (valid during
- * the call only); `points_reached` is the share of the distinct points the surface has reached. Return
- * non-zero to cancel the call (it then returns DBRG_ERR_CANCELLED). */
+ * the call only; NULL when there are none); `points_reached` is the share of the distinct points the
+ * surface has now. Taken while growing, a snapshot is oriented consistently but may have pinched
+ * (bow-tie) vertices where two fronts touch before they are joined, and closed parts are not yet turned
+ * outward. Time spent in the callback counts as growing time. Return non-zero to cancel the call (it
+ * then returns DBRG_ERR_CANCELLED). */
 typedef int (*dbrg_snapshot_fn)(void* user, const uint32_t* triangles, uint32_t triangle_count, double points_reached);
 
 typedef enum dbrg_scalar_type {
@@ -195,7 +198,8 @@ typedef struct dbrg_params {
 
     /* EXPERIMENTAL. NULL (the default) or 0 snapshots: none. Otherwise called on the calling thread up to
      * `snapshot_count` times while the surface grows: when the share of points reached first passes
-     * 1/K, 2/K, ... (K = snapshot_count) and once when growing ends, before hole filling. */
+     * 1/K, 2/K, ... (K = snapshot_count; one call for several shares passed at once) and once when
+     * growing ends, before hole filling. */
     dbrg_snapshot_fn snapshot;
     void* snapshot_user;
     uint32_t snapshot_count;

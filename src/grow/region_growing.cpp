@@ -268,7 +268,7 @@ dbrg_status RegionGrower::drain_queue() {
         const uint32_t h = c.halfedge;
         DBRG_PROPAGATE(add_face(surface_.target(h), surface_.origin(h), c.apex, c.tet, &check));
         if (++steps % 1024 == 0) {
-            DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, double(used_vertices_) / delaunay_.vertex_count()));
+            DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, points_reached()));
         }
     }
     return DBRG_OK;
@@ -442,7 +442,6 @@ dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after)
 
 // Inserts face (a, b, c) into S and queues candidates for its new boundary edges (§3.2.2).
 dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck* check) {
-    for (uint32_t corner : {a, b, c}) used_vertices_ += surface_.is_used(corner) ? 0 : 1;
     const uint32_t f = check ? surface_.add_face(a, b, c, tet, *check) : surface_.add_face(a, b, c, tet);
     if (f == NO_FACE) return context_.fail_out_of_memory();
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
@@ -577,7 +576,7 @@ double RegionGrower::ball_radius(uint32_t u, uint32_t v, uint32_t w, uint32_t t)
 
 // Tells the step observer, if any, that S has changed.
 dbrg_status RegionGrower::report_step() const {
-    return observer_ ? observer_(observer_user_, surface_, double(used_vertices_) / delaunay_.vertex_count()) : DBRG_OK;
+    return observer_ ? observer_(observer_user_, surface_, points_reached()) : DBRG_OK;
 }
 
 dbrg_status RegionGrower::regrow_holes() {

@@ -67,6 +67,8 @@ private:
     void release_queues();
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
     dbrg_status report_step() const;
+    // The share of the points S has now (pinch removal may give some back).
+    double points_reached() const { return double(surface_.used_vertex_count()) / delaunay_.vertex_count(); }
     dbrg_status flip_to_smaller_balls();
     dbrg_status flip_if_smaller(uint32_t halfedge);
     uint32_t tet_with_corners(uint32_t tet, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const;
@@ -92,7 +94,6 @@ private:
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
-    uint32_t used_vertices_ = 0;
 };
 
 } // namespace dbrg

@@ -17,6 +17,7 @@ bool Surface::reset(uint32_t vertex_count) {
     tets_.clear();
     extra_fans_.clear();
     pinched_vertices_ = 0;
+    used_vertices_ = 0;
     removed_faces_ = 0;
     vertex_halfedge_.clear();
     pinched_.clear();
@@ -238,6 +239,7 @@ bool Surface::remove_small_components(uint32_t min_faces, Array<uint32_t>& remov
 bool Surface::add_fan(uint32_t v, uint32_t h) {
     if (vertex_halfedge_[v] == NO_HALFEDGE) {
         vertex_halfedge_[v] = h;
+        ++used_vertices_;
         return true;
     }
     if (!extra_fans_.push_back(ExtraFan{v, h})) return false;
@@ -263,6 +265,7 @@ void Surface::drop_fan(uint32_t v, uint32_t h) {
             if (extra_fans_[i].vertex == v) found = i;
         }
         vertex_halfedge_[v] = found < extra_fans_.size() ? extra_fans_[found].halfedge : NO_HALFEDGE;
+        used_vertices_ -= vertex_halfedge_[v] == NO_HALFEDGE ? 1 : 0;
     } else {
         for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
             if (extra_fans_[i].vertex == v && extra_fans_[i].halfedge == h) found = i;
@@ -309,6 +312,12 @@ bool Surface::validate(char* message, size_t capacity) const {
     }
     if (removed != removed_faces_) {
         snprintf(message, capacity, "%u faces are marked removed, %u counted", removed, removed_faces_);
+        return false;
+    }
+    uint32_t used = 0;
+    for (uint32_t v = 0; v < vertex_count(); ++v) used += is_used(v) ? 1 : 0;
+    if (used != used_vertices_) {
+        snprintf(message, capacity, "%u vertices have faces, %u counted", used, used_vertices_);
         return false;
     }
     // No directed edge twice (an orientation clash or a third face on an edge), and a boundary half-edge

@@ -75,6 +75,8 @@ public:
     bool is_boundary_vertex(uint32_t v) const { return is_used(v) && is_boundary(vertex_halfedge_[v]); }
     bool is_pinched(uint32_t v) const { return pinched_[v] != 0; }
     uint32_t pinched_vertex_count() const { return pinched_vertices_; }
+    // Vertices with at least one face now.
+    uint32_t used_vertex_count() const { return used_vertices_; }
     // Some pinched vertex, or NO_HALFEDGE when there is none.
     uint32_t first_pinched_vertex() const { return extra_fans_.empty() ? NO_HALFEDGE : extra_fans_[0].vertex; }
     // The number of faces in the open fan that starts at outgoing boundary half-edge `start`.
@@ -149,6 +151,7 @@ private:
     Array<uint8_t> pinched_;           // 1 per vertex: has entries in extra_fans_
     Array<ExtraFan> extra_fans_;       // second and later fans of pinched vertices
     uint32_t pinched_vertices_ = 0;
+    uint32_t used_vertices_ = 0;
     uint32_t removed_faces_ = 0;
 };
 
