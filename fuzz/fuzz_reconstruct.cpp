@@ -38,9 +38,10 @@ const uint32_t COMPONENTS[] = {64, 1, 2, UINT32_MAX, 0};
 const uint32_t ENUM_VALUES[] = {0, 1, 0, 1, 2, UINT32_MAX};
 const uint32_t THREADS[] = {1, 0, 2, 4};
 const uint32_t SNAPSHOT_COUNTS[] = {0, 0, 1, 3, 64, UINT32_MAX};
-// Ours, a newer caller's, a 0.1.0 caller's (without the snapshot fields), and two sizes no version has.
+// Ours, a newer caller's, a 0.1.0 caller's (without the snapshot fields), and three sizes no version has.
 const size_t STRUCT_SIZES[] = {sizeof(dbrg_params), sizeof(dbrg_params), sizeof(dbrg_params) + 8,
-                               offsetof(dbrg_params, snapshot), offsetof(dbrg_params, snapshot) - 8, 0};
+                               offsetof(dbrg_params, snapshot), offsetof(dbrg_params, snapshot) - 8,
+                               offsetof(dbrg_params, snapshot) + 4, 0};
 
 enum class Fault { none, fail_one_allocation, fail_allocations_from, cancel };
 enum class Variant { none, reversed, relaid, rescaled };

@@ -14,8 +14,10 @@ using namespace dbrg;
 
 namespace {
 
-// The part of dbrg_params that version 0.1 callers know; struct_size may not be smaller.
+// The sizes of dbrg_params that released headers have: 0.1.0 ended before the snapshot fields.
 const size_t PARAMS_V0_1_SIZE = offsetof(dbrg_params, snapshot);
+
+bool known_params_size(size_t size) { return size == PARAMS_V0_1_SIZE || size == sizeof(dbrg_params); }
 
 void write_message(char* message, size_t capacity, const char* text) {
     if (message && capacity > 0) snprintf(message, capacity, "%s", text);
@@ -120,7 +122,7 @@ DBRG_API const char* dbrg_status_string(dbrg_status status) {
 }
 
 DBRG_API dbrg_status dbrg_params_init_sized(dbrg_params* params, size_t struct_size) {
-    if (!params || struct_size < PARAMS_V0_1_SIZE) return DBRG_ERR_INVALID_ARGUMENT;
+    if (!params || !(known_params_size(struct_size) || struct_size > sizeof(dbrg_params))) return DBRG_ERR_INVALID_ARGUMENT;
     dbrg_params defaults;
     fill_default_params(defaults);
     const size_t filled = struct_size < sizeof defaults ? struct_size : sizeof defaults;
@@ -135,15 +137,19 @@ DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* messa
         write_message(message, capacity, "params is NULL");
         return DBRG_ERR_INVALID_ARGUMENT;
     }
-    if (params->struct_size < PARAMS_V0_1_SIZE || params->struct_size > sizeof(dbrg_params)) {
+    if (!known_params_size(params->struct_size)) {
         char text[200];
         snprintf(text, sizeof text,
-                 "params->struct_size is %zu; this library (%s) knows sizes %zu to %zu: call dbrg_params_init first",
+                 "params->struct_size is %zu; this library (%s) knows sizes %zu and %zu: call dbrg_params_init first",
                  params->struct_size, DBRG_VERSION_STRING, PARAMS_V0_1_SIZE, sizeof(dbrg_params));
         write_message(message, capacity, text);
         return DBRG_ERR_INVALID_ARGUMENT;
     }
-    const char* problem = find_parameter_problem(*params);
+    // Checked as the library will use them: the caller's bytes over the defaults, never past its struct.
+    dbrg_params effective;
+    fill_default_params(effective);
+    memcpy(&effective, params, params->struct_size);
+    const char* problem = find_parameter_problem(effective);
     if (!problem) return DBRG_OK;
     write_message(message, capacity, problem);
     return DBRG_ERR_INVALID_PARAMETER;

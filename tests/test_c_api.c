@@ -126,7 +126,15 @@ static void test_params(void) {
         CHECK(older.struct_size == offsetof(dbrg_params, snapshot));
         CHECK(dbrg_params_validate(&older, message, sizeof message) == DBRG_OK);
         CHECK(dbrg_params_init_sized(&older, offsetof(dbrg_params, snapshot) - 1) == DBRG_ERR_INVALID_ARGUMENT);
+        /* A size no header ever had (half a pointer of the snapshot fields) is refused. */
+        CHECK(dbrg_params_init_sized(&older, offsetof(dbrg_params, snapshot) + 4) == DBRG_ERR_INVALID_ARGUMENT);
+        older.struct_size = offsetof(dbrg_params, snapshot) + 4;
+        CHECK(dbrg_params_validate(&older, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
     }
+    params.reserved = 1;
+    CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_ERR_INVALID_PARAMETER);
+    CHECK(strstr(message, "reserved") != NULL);
+    params.reserved = 0;
     CHECK(dbrg_params_validate(&params, message, sizeof message) == DBRG_OK);
     CHECK(message[0] == '\0');
     CHECK(dbrg_params_validate(NULL, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);

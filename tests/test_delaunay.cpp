@@ -94,6 +94,29 @@ TEST_CASE("brio_hilbert_order is a permutation that depends on the points only")
     CHECK(std::equal(a.begin(), a.end(), b.begin()));
 }
 
+TEST_CASE("the Hilbert order and its check are the same on one thread and on several") {
+    // 120,000 points: two slices of 60,000 on two threads.
+    const std::vector<double> xyz = random_cube(120000, 11);
+    Context context(test_params());
+    ConditionedPoints points(context.memory);
+    REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
+    const uint32_t n = points.size();
+    Array<uint32_t> one(context.memory), several(context.memory);
+    REQUIRE(hilbert_order(points.coordinates.data(), n, 1, one));
+    REQUIRE(hilbert_order(points.coordinates.data(), n, 2, several));
+    CHECK(std::equal(one.begin(), one.end(), several.begin()));
+    REQUIRE(renumber_spatially(points, context) == DBRG_OK);
+    CHECK(in_hilbert_order(points.coordinates.data(), n, 2));
+    // A descent exactly where the second slice begins, and one inside it, are both seen.
+    for (uint32_t at : {n / 2, n / 2 + 1000}) {
+        CAPTURE(at);
+        std::vector<double> swapped(points.coordinates.begin(), points.coordinates.end());
+        std::swap_ranges(swapped.begin() + 3 * size_t(at - 1), swapped.begin() + 3 * size_t(at), swapped.begin() + 3 * size_t(at));
+        CHECK_FALSE(in_hilbert_order(swapped.data(), n, 2));
+        CHECK_FALSE(in_hilbert_order(swapped.data(), n, 1));
+    }
+}
+
 TEST_CASE("the insertion order is streamed on Hilbert-numbered points and equals the sorted one") {
     for (const std::vector<double>& xyz : {random_cube(20000, 7), random_sphere(5000, 8), lattice(12, 0.0, 9)}) {
         Context context(test_params());

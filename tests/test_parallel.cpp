@@ -43,8 +43,8 @@ TEST_CASE("slices cover every item once, in order") {
     }
 }
 
-TEST_CASE("run_parts runs each part exactly once") {
-    for (uint32_t parts : {1u, 2u, 3u, 8u}) {
+TEST_CASE("run_parts runs each part exactly once, also beyond MAX_THREADS") {
+    for (uint32_t parts : {1u, 2u, 3u, 8u, MAX_THREADS, MAX_THREADS + 7}) {
         std::vector<std::atomic<int>> runs(parts);
         run_parts(parts, [&](uint32_t part) { ++runs[part]; });
         for (uint32_t part = 0; part < parts; ++part) CHECK(runs[part].load() == 1);
@@ -80,7 +80,7 @@ TEST_CASE("parallel_sort gives std::sort's order for any number of parts") {
         const std::vector<Keyed> original = random_items(count, count < 50 ? 3 : 1000, count);
         std::vector<Keyed> expected = original;
         std::sort(expected.begin(), expected.end(), by_key_then_index);
-        for (uint32_t parts = 1; parts <= 7; ++parts) {
+        for (uint32_t parts : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 33u, MAX_THREADS, MAX_THREADS + 1}) {
             CAPTURE(count);
             CAPTURE(parts);
             std::vector<Keyed> items = original, scratch(count);

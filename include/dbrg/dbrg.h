@@ -24,10 +24,10 @@
 #include <stdint.h>
 
 #define DBRG_VERSION_MAJOR 0
-#define DBRG_VERSION_MINOR 1
+#define DBRG_VERSION_MINOR 2
 #define DBRG_VERSION_PATCH 0
 #define DBRG_VERSION_NUMBER (DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH)
-#define DBRG_VERSION_STRING "0.1.0"
+#define DBRG_VERSION_STRING "0.2.0"
 
 #if defined(_WIN32) && defined(DBRG_SHARED_BUILD)
 #define DBRG_API __declspec(dllexport)
@@ -194,7 +194,7 @@ typedef struct dbrg_params {
     dbrg_progress_fn progress;
     void* progress_user;
 
-    /* Fields added after version 0.1.0 (an older caller's struct_size leaves them at their defaults). */
+    /* Fields from version 0.2.0 on (a 0.1.0 caller's struct_size leaves them at their defaults). */
 
     /* EXPERIMENTAL. NULL (the default) or 0 snapshots: none. Otherwise called on the calling thread up to
      * `snapshot_count` times while the surface grows: when the share of points reached first passes
@@ -203,14 +203,16 @@ typedef struct dbrg_params {
     dbrg_snapshot_fn snapshot;
     void* snapshot_user;
     uint32_t snapshot_count;
+    /* Must be 0. Holds the place the compiler would pad, so that the struct's size tells its version. */
+    uint32_t reserved;
 } dbrg_params;
 
 /* Fills the first `struct_size` bytes of `params` with the defaults (the paper's values where it gives
  * one) and sets params->struct_size to the number of bytes filled, which is struct_size or, for a caller
  * with a newer header, this library's sizeof(dbrg_params). C and C++ callers use dbrg_params_init below;
  * bindings pass the size of their own copy of the struct.
- * Returns DBRG_ERR_INVALID_ARGUMENT when params is NULL or struct_size is smaller than the struct of
- * version 0.1. */
+ * Returns DBRG_ERR_INVALID_ARGUMENT when params is NULL or struct_size is neither the size of the struct
+ * of a released version (0.1.0 or 0.2.0) nor larger than this one's. */
 DBRG_API dbrg_status dbrg_params_init_sized(dbrg_params* params, size_t struct_size);
 
 /* Fills `params` with the defaults; inline so that the size is the one of the header the caller was

@@ -15,8 +15,9 @@ namespace dbrg {
 // At most this many threads, whatever the machine or the caller asks for.
 constexpr uint32_t MAX_THREADS = 64;
 
-// How many parts to split `items` items into: the caller's thread count (0: every hardware thread), but at
-// most one part per `min_items_per_part` items, so that small inputs never pay for starting a thread.
+// How many parts to split `items` items into: the caller's thread count (0: every processor the process
+// may use), at most MAX_THREADS, and at most one part per `min_items_per_part` items, so that small inputs
+// never pay for starting a thread.
 uint32_t part_count(uint32_t requested_threads, size_t items, size_t min_items_per_part);
 
 // The first item of part `part` when `items` items are split into `parts` nearly equal slices.
@@ -24,9 +25,9 @@ inline size_t part_begin(size_t items, uint32_t parts, uint32_t part) {
     return items / parts * part + items % parts * part / parts;  // items * part / parts without overflow
 }
 
-// Calls task(work, part) for part 1 .. parts - 1 each on a thread of its own and for part 0 on the calling
-// thread, and returns when all are done. A thread the system refuses to start costs only time: its part
-// then runs on the calling thread.
+// Calls task(work, part) for part 1 .. parts - 1 each on a thread of its own (up to MAX_THREADS) and for
+// part 0 on the calling thread, and returns when all are done. A thread the system refuses to start, or
+// a part beyond MAX_THREADS, costs only time: that part runs on the calling thread.
 void run_parts_on_threads(uint32_t parts, void (*task)(const void* work, uint32_t part), const void* work);
 
 // Calls work(part) for every part in 0 .. parts - 1 at once (see run_parts_on_threads).

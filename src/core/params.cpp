@@ -46,6 +46,7 @@ const char* find_parameter_problem(const dbrg_params& params) {
     const bool allocator_complete = !params.allocator || (params.allocator->allocate && params.allocator->reallocate &&
                                                           params.allocator->deallocate);
     if (!allocator_complete) return "allocator must provide allocate, reallocate and deallocate (or be NULL)";
+    if (params.reserved != 0) return "reserved must be 0";
     return nullptr;
 }
 

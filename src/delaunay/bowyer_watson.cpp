@@ -201,7 +201,7 @@ dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
 }
 
 dbrg_status DelaunayBuilder::size_store(size_t slots) {
-    // The arrays are sized (and so written) to their whole capacity at once, in one fill split among the
+    // The arrays are sized (and so written) to room for `slots` slots at once, in one fill split among the
     // threads, rather than four entries per new slot: those small writes each waited for a new cache
     // line, and took a tenth of the time. slot_end_ counts the slots in use; run() cuts the arrays' size to
     // it (the spare capacity, about 1 %, stays allocated).

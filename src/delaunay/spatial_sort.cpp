@@ -166,12 +166,13 @@ bool in_hilbert_order(const double* points, uint32_t count, uint32_t threads) {
         // Each slice also compares its first point with the one before it.
         const size_t begin = part_begin(count, parts, part), end = part_begin(count, parts, part + 1);
         uint64_t previous = begin == 0 ? 0 : grid.key(points + 3 * (begin - 1));
-        ordered[part] = true;
-        for (size_t i = begin; i < end && ordered[part]; ++i) {
+        bool in_order = true;  // written to the shared array once, not per point
+        for (size_t i = begin; i < end && in_order; ++i) {
             const uint64_t key = grid.key(points + 3 * i);
-            ordered[part] = key >= previous;
+            in_order = key >= previous;
             previous = key;
         }
+        ordered[part] = in_order;
     });
     return std::all_of(ordered, ordered + parts, [](bool b) { return b; });
 }

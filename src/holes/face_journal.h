@@ -49,7 +49,8 @@ public:
 
     // Takes back the entries from `position` on, last first: removes each face added, and has
     // restore(entry) add back each face removed (the caller adds it, so it can attach its own data to the
-    // new id). Returns false when a removal or restore(entry) failed for lack of memory.
+    // new id). Returns false when a removal or restore(entry) failed for lack of memory, or (a bug) a face
+    // to remove is not there.
     template <class Restore>
     bool undo(Surface& surface, size_t position, Restore&& restore) {
         while (entries_.size() > position) {
@@ -61,9 +62,11 @@ public:
                 continue;
             }
             --added_;
-            // Undoing exactly leaves S as it was right after the addition, so the face is there.
+            // Undoing exactly leaves S as it was right after the addition, so the face is there; if it
+            // ever is not, stop rather than remove some other face.
             const uint32_t h = surface.find_halfedge(entry.corners[0], entry.corners[1]);
             assert(h != NO_HALFEDGE && surface.target(Surface::next(h)) == entry.corners[2]);
+            if (h == NO_HALFEDGE || surface.target(Surface::next(h)) != entry.corners[2]) return false;
             if (!surface.remove_face(Surface::face_of(h))) return false;
         }
         return true;

@@ -140,6 +140,9 @@ dbrg_status HoleFiller::fill_within_fold_limits(uint32_t u, uint32_t v, uint32_t
         // exact undo has made a boundary edge again.
         const uint32_t edge = surface_.find_halfedge(u, v);
         assert(edge != NO_HALFEDGE && surface_.is_boundary(edge));
+        if (edge == NO_HALFEDGE || !surface_.is_boundary(edge)) {
+            return context_.fail(DBRG_ERR_INTERNAL, "a hole's edge %u-%u was not found again after an undo", u, v);
+        }
         DBRG_PROPAGATE(fill_hole(edge, enlargements, journal, filled));
         if (filled) return DBRG_OK;
         DBRG_PROPAGATE(undo(journal, position));
@@ -274,7 +277,9 @@ dbrg_status HoleFiller::undo(FaceJournal& journal, size_t position) {
     const bool undone = journal.undo(surface_, position, [&](const FaceJournal::Entry& face) {
         return add_face(face.corners[0], face.corners[1], face.corners[2], face.tet, face.causes, nullptr) == DBRG_OK;
     });
-    return undone ? DBRG_OK : context_.fail_out_of_memory();
+    if (undone) return DBRG_OK;
+    return context_.memory.failed() ? context_.fail_out_of_memory()
+                                    : context_.fail(DBRG_ERR_INTERNAL, "undoing a hole filling did not find a face it had added");
 }
 
 dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes,

@@ -361,7 +361,8 @@ def reconstruct(points, *, sliver_angle=None, boundary_factor=None, boundary_mea
     max_hole_edges: holes with more boundary edges stay open (at least 3).
     max_components: how many surfaces may grow from separate seeds (at least 1).
     backend: "builtin" or "tetgen" (the latter only in builds configured with -Dtetgen=enabled).
-    threads: worker threads, 0 for all; the result is the same for any value.
+    threads: threads for the stages that split into parts; 0 (the default) for every processor, 1 for
+        none besides the calling one; the result is the same for any value.
     progress: None, or progress(stage_name, fraction) called on the calling thread; returning False
         cancels (CancelledError), and an exception raised inside it cancels the computation and is
         raised again from here. Ctrl-C (KeyboardInterrupt) cancels at the next progress report too.
@@ -425,5 +426,5 @@ def validate_points(points):
 
 
 def library_version():
-    """The version string of the loaded shared library ("0.1.0")."""
+    """The version string of the loaded shared library ("0.2.0")."""
     return library().dbrg_version_string().decode()

@@ -10,9 +10,9 @@ from ctypes import POINTER, c_char_p, c_double, c_int, c_size_t, c_uint32, c_uin
 
 # The header these declarations were written against (DBRG_VERSION_*).
 DBRG_VERSION_MAJOR = 0
-DBRG_VERSION_MINOR = 1
+DBRG_VERSION_MINOR = 2
 DBRG_VERSION_PATCH = 0
-DBRG_VERSION_STRING = "0.1.0"
+DBRG_VERSION_STRING = "0.2.0"
 DBRG_VERSION_NUMBER = DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH
 
 DBRG_MAX_POINTS = 0x7FFFFFFF
@@ -103,6 +103,7 @@ class dbrg_params(ctypes.Structure):
         ("snapshot", SNAPSHOT_FN),
         ("snapshot_user", c_void_p),
         ("snapshot_count", c_uint32),
+        ("reserved", c_uint32),
     ]
 
 

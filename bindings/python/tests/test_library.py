@@ -40,7 +40,7 @@ class LibraryLookup(unittest.TestCase):
         self.assertIn("not a usable dbrg library", run.stderr)
 
     def test_a_library_of_another_minor_version(self):
-        # Pretend the package was written for 0.7: the 0.1 library must be refused, naming both versions.
+        # Pretend the package was written for 0.7: the 0.2 library must be refused, naming both versions.
         code = ("import dbrg._capi as c; c.DBRG_VERSION_MINOR = 7; c.DBRG_VERSION_STRING = '0.7.0'\n"
                 "import dbrg; dbrg.library_version()")
         run = run_python(code, DBRG_LIBRARY=dbrg.library_path())

@@ -239,6 +239,7 @@ fn default_raw_params() -> sys::dbrg_params {
         snapshot: None,
         snapshot_user: ptr::null_mut(),
         snapshot_count: 0,
+        reserved: 0,
     };
     // SAFETY: raw is a valid dbrg_params to write.
     let status = unsafe { sys::dbrg_params_init_sized(&mut raw, std::mem::size_of::<sys::dbrg_params>()) };
@@ -720,7 +721,7 @@ pub fn library_version() -> (u32, u32, u32) {
     (number / 10000, number / 100 % 100, number % 100)
 }
 
-/// The version string of the library linked at run time ("0.1.0").
+/// The version string of the library linked at run time ("0.2.0").
 pub fn library_version_string() -> &'static str {
     // SAFETY: a static NUL-terminated string.
     unsafe { CStr::from_ptr(sys::dbrg_version_string()) }.to_str().unwrap_or("")
