@@ -216,6 +216,16 @@ struct Snapshots {
     std::vector<double> reached;
     size_t cancel_at = SIZE_MAX;  // return non-zero from this call on
 
+    // Default parameters asking this object for `count` snapshots.
+    dbrg_params params(uint32_t count) {
+        dbrg_params p;
+        dbrg_params_init(&p);
+        p.snapshot = take;
+        p.snapshot_user = this;
+        p.snapshot_count = count;
+        return p;
+    }
+
     static int take(void* user, const uint32_t* triangles, uint32_t count, double points_reached) {
         Snapshots& s = *static_cast<Snapshots*>(user);
         s.triangles.emplace_back(triangles, triangles + 3 * size_t(count));
@@ -233,11 +243,7 @@ TEST_CASE("snapshots show growth at evenly spaced shares of the points, each ori
     for (uint32_t count : {1u, 5u}) {
         CAPTURE(count);
         Snapshots snapshots;
-        dbrg_params params;
-        dbrg_params_init(&params);
-        params.snapshot = Snapshots::take;
-        params.snapshot_user = &snapshots;
-        params.snapshot_count = count;
+        const dbrg_params params = snapshots.params(count);
         const test::Reconstruction result = test::reconstruct(xyz, &params);
         REQUIRE(result.status == DBRG_OK);
         CHECK(result.triangles == plain.triangles);  // watching does not change the outcome
@@ -263,11 +269,7 @@ TEST_CASE("snapshots show growth at evenly spaced shares of the points, each ori
 TEST_CASE("a snapshot count larger than the steps of growth gives at most one snapshot per step") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 300);
     Snapshots snapshots;
-    dbrg_params params;
-    dbrg_params_init(&params);
-    params.snapshot = Snapshots::take;
-    params.snapshot_user = &snapshots;
-    params.snapshot_count = UINT32_MAX;
+    const dbrg_params params = snapshots.params(UINT32_MAX);
     REQUIRE(test::reconstruct(xyz, &params).status == DBRG_OK);
     CHECK(snapshots.triangles.size() > 100);
     CHECK(snapshots.triangles.size() <= 2 * xyz.size() / 3);  // no more than the faces grown
@@ -277,11 +279,7 @@ TEST_CASE("a snapshot callback can cancel") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
     Snapshots snapshots;
     snapshots.cancel_at = 1;
-    dbrg_params params;
-    dbrg_params_init(&params);
-    params.snapshot = Snapshots::take;
-    params.snapshot_user = &snapshots;
-    params.snapshot_count = 4;
+    const dbrg_params params = snapshots.params(4);
     CHECK(test::reconstruct(xyz, &params).status == DBRG_ERR_CANCELLED);
     CHECK(snapshots.triangles.size() == 2);
 }
