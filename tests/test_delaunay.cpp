@@ -95,8 +95,8 @@ TEST_CASE("brio_hilbert_order is a permutation that depends on the points only")
 }
 
 TEST_CASE("the Hilbert order and its check are the same on one thread and on several") {
-    // 120,000 points: two slices of 60,000 on two threads.
-    const std::vector<double> xyz = random_cube(120000, 11);
+    // Two slices of 20,000 points on two threads.
+    const std::vector<double> xyz = random_cube(2 * 20000, 11);
     Context context(test_params());
     ConditionedPoints points(context.memory);
     REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);

@@ -124,8 +124,8 @@ TEST_CASE("four threads at once get the results each call gets alone") {
 }
 
 TEST_CASE("an input large enough to be split gives the same results on one thread and on several") {
-    // Above 100,000 points the sorting, scanning and store filling run in two or more parts.
-    const std::vector<double> xyz = samples::sample(samples::Shape::bumpy_sphere, 120000);
+    // From 32,768 points on (twice the fewest a thread gets), sorting, scanning and filling the store split.
+    const std::vector<double> xyz = samples::sample(samples::Shape::bumpy_sphere, 40000);
     const Outcome one = run(xyz, 1);
     REQUIRE(one.status == DBRG_OK);
     for (uint32_t threads : {2u, 0u}) {

@@ -183,9 +183,9 @@ typedef struct dbrg_params {
     dbrg_backend backend;
     /* Threads for the stages that split into independent parts (sorting and scanning the points,
      * filling the tetrahedron store); growing the surface is sequential. 1 runs on the calling thread
-     * only; 0 (the default) uses every hardware thread. Extra threads are started only for inputs of
-     * about 100,000 points or more. They never call the allocator or the progress callback: those stay
-     * on the calling thread. The result is the same for any value. */
+     * only; 0 (the default) uses every processor the process may run on. Extra threads are started only
+     * for inputs of about 33,000 points or more. They never call the allocator or the progress callback:
+     * those stay on the calling thread. The result is the same for any value. */
     uint32_t threads;
 
     /* NULL: the C library's malloc/realloc/free. Copied at the start of the call. */

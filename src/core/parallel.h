@@ -15,6 +15,10 @@ namespace dbrg {
 // At most this many threads, whatever the machine or the caller asks for.
 constexpr uint32_t MAX_THREADS = 64;
 
+// The fewest points a thread gets in the per-point stages: starting a thread costs tens of microseconds,
+// sorting or scanning this many points about a millisecond.
+constexpr size_t MIN_POINTS_PER_THREAD = 16384;
+
 // How many parts to split `items` items into: the caller's thread count (0: every processor the process
 // may use), at most MAX_THREADS, and at most one part per `min_items_per_part` items, so that small inputs
 // never pay for starting a thread.

@@ -44,7 +44,7 @@ constexpr double EXPECTED_TETS_PER_POINT = 6.0;
 constexpr size_t GROWTH_DIVISOR = 16;
 constexpr double PROJECTION_MARGIN = 1.05;
 // Below this many new store entries per thread, a thread costs more to start than the fill it takes over.
-constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 20;
+constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 18;
 
 // Face lf of a tetrahedron as three local vertices in the order that makes (face, lf) an even
 // permutation of (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.

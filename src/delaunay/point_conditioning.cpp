@@ -47,9 +47,6 @@ double snap_to_predicate_grid(double x) {
     return ldexp(nearbyint(ldexp(x, grid_exponent)), -grid_exponent);
 }
 
-// Below this many points per thread, a thread costs more to start than it saves.
-constexpr size_t MIN_POINTS_PER_THREAD = 50000;
-
 struct IndexedPoint {
     double p[3];
     uint32_t index;

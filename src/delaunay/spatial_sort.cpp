@@ -74,9 +74,6 @@ bool by_key_then_index(const KeyedIndex& a, const KeyedIndex& b) {
     return a.key != b.key ? a.key < b.key : a.index < b.index;
 }
 
-// Below this many points per thread, a thread costs more to start than it saves.
-constexpr size_t MIN_POINTS_PER_THREAD = 50000;
-
 } // namespace
 
 uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
