@@ -184,7 +184,7 @@ typedef struct dbrg_params {
     /* Threads for the stages that split into independent parts (sorting and scanning the points,
      * filling the tetrahedron store); growing the surface is sequential. 1 runs on the calling thread
      * only; 0 (the default) uses every processor the process may run on. Extra threads are started only
-     * for inputs of about 33,000 points or more. They never call the allocator or the progress callback:
+     * for inputs of about 22,000 points or more. They never call the allocator or the progress callback:
      * those stay on the calling thread. The result is the same for any value. */
     uint32_t threads;
 
