@@ -1,5 +1,6 @@
 // Unit tests of region growing below the C API: the surface stays valid after every insertion, the seed
-// follows §3.1.1, components are grown from separate seeds, and the stage honours its limits.
+// follows §3.1.1, components are grown from separate seeds, the edge flips come to rest, and the stage
+// honours its limits.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
+#include "holes/hole_filling.h"
 #include "grow/triangle_geometry.h"
 #include "samples/samples.h"
 #include "surface/surface.h"
@@ -159,6 +161,61 @@ TEST_CASE("the open-surface test refuses candidates and records why the edges st
     }
     CHECK(boundary > 50);
     CHECK(open > boundary / 2);
+}
+
+namespace {
+
+// What the edge flips would still do with the live edges of S: flips left, and edges deferred.
+struct FlipsLeft {
+    uint32_t flips = 0, deferred = 0;
+};
+FlipsLeft flips_left(const RegionGrower& grower, const Surface& surface) {
+    FlipsLeft left;
+    for (uint32_t h = 0; h < 3 * surface.face_count(); ++h) {
+        if (surface.face_removed(Surface::face_of(h))) continue;
+        uint32_t tet = NO_TET;
+        const EdgeFlipper::Decision decision = grower.edge_flips().decide(h, tet);
+        left.flips += decision == EdgeFlipper::Decision::flip ? 1 : 0;
+        left.deferred += decision == EdgeFlipper::Decision::defer ? 1 : 0;
+    }
+    return left;
+}
+
+} // namespace
+
+TEST_CASE("the edge flips come to rest: none is left to make, and only edges at the boundary wait") {
+    uint32_t flips = 0;
+    for (samples::Shape shape : {samples::Shape::sphere, samples::Shape::torus, samples::Shape::saddle,
+                                 samples::Shape::bumpy_sphere}) {
+        Setup setup(samples::sample(shape, 4000));
+        RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+        uint32_t checks = 0;
+        grower.observe_steps(surface_is_valid, &checks);
+        REQUIRE(grower.grow() == DBRG_OK);
+        CHECK(checks == setup.surface.face_count());  // the flips' faces were checked too
+        const FlipsLeft left = flips_left(grower, setup.surface);
+        CHECK(left.flips == 0);
+        if (boundary_halfedges(setup.surface) == 0) CHECK(left.deferred == 0);
+        flips += grower.edge_flips().flip_count();
+    }
+    CHECK(flips > 0);
+}
+
+TEST_CASE("hole filling makes the flips growing deferred at the holes' rims") {
+    // Growing leaves holes along the cylinder's sharp rims; filling closes them. (A sample where a flip
+    // waits for a hole: most flips are made while growing.)
+    Setup setup(samples::sample(samples::Shape::capped_cylinder, 3000, 3));
+    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+    REQUIRE(grower.grow() == DBRG_OK);
+    REQUIRE(boundary_halfedges(setup.surface) > 0);
+    const uint32_t flips_while_growing = grower.edge_flips().flip_count();
+    HoleFiller filler(setup.delaunay, setup.surface, grower, setup.context);
+    REQUIRE(filler.fill() == DBRG_OK);
+    CHECK(boundary_halfedges(setup.surface) == 0);
+    const FlipsLeft left = flips_left(grower, setup.surface);
+    CHECK(left.flips == 0);
+    CHECK(left.deferred == 0);
+    CHECK(grower.edge_flips().flip_count() > flips_while_growing);
 }
 
 TEST_CASE("a cancelling progress callback stops growing") {

@@ -11,6 +11,7 @@
 
 #include "core/intrinsics.h"
 #include "core/status.h"
+#include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
 #include "predicates/predicates.h"
 
@@ -102,7 +103,8 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       cos_sliver_(cos(context.params.sliver_angle)),
       queue_(context.memory),
       postponed_(context.memory),
-      open_(context.memory) {}
+      open_(context.memory),
+      flipper_(delaunay, surface, context) {}
 
 dbrg_status RegionGrower::grow() {
     const uint32_t n = delaunay_.vertex_count();
@@ -162,7 +164,7 @@ dbrg_status RegionGrower::grow() {
     }
     release_queues();
     DBRG_PROPAGATE(remove_islands());
-    DBRG_PROPAGATE(flip_to_smaller_balls());
+    DBRG_PROPAGATE(flipper_.flip_all(radius_sum_));
     context_.stats.components = components_;  // the output stage recounts after hole filling
     return context_.report(DBRG_STAGE_GROW, 1.0);
 }
@@ -325,7 +327,7 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
     if (surface_.face_tet(face) == NO_TET) return false;  // a hole-filling face: no tetrahedron to walk from
     const uint32_t u = surface_.origin(halfedge), v = surface_.target(halfedge);
     const uint32_t opposite = surface_.target(Surface::next(halfedge));
-    const Vec3 normal_b = face_normal(face);
+    const Vec3 normal_b = face_normal(delaunay_, surface_, face);
     const double* pu = delaunay_.point(u);
     const double* pv = delaunay_.point(v);
     bool found = false;
@@ -371,7 +373,7 @@ RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothne
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
     const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
     check = surface_.check_face(v, u, c.apex);
-    smoothness = dihedral_cosine(normal, face_normal(Surface::face_of(c.halfedge)));
+    smoothness = dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(c.halfedge)));
     switch (check.verdict) {
     case FaceCheck::edge_nonmanifold: return Verdict::edge_nonmanifold;
     case FaceCheck::orientation: return Verdict::orientation;
@@ -383,7 +385,7 @@ RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothne
     bool too_sharp = false;
     for (uint32_t shared : check.shared) {
         if (shared == NO_HALFEDGE) continue;
-        const double cos_theta = dihedral_cosine(normal, face_normal(Surface::face_of(shared)));
+        const double cos_theta = dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(shared)));
         too_sharp = too_sharp || cos_theta <= cos_sliver_;
         cos_sum += cos_theta;
         ++neighbours;
@@ -413,7 +415,7 @@ double RegionGrower::local_mean_radius(uint32_t halfedge) const {
         const uint32_t start = surface_.vertex_halfedge(end);
         uint32_t h = start;
         do {
-            sum += face_radius(Surface::face_of(h));
+            sum += face_radius(delaunay_, surface_, Surface::face_of(h));
             ++count;
             h = surface_.rotate(h);
         } while (h != NO_HALFEDGE && h != start);
@@ -425,7 +427,7 @@ double RegionGrower::local_mean_radius(uint32_t halfedge) const {
 // recomputed the same way rather than stored in every queue entry).
 CandidateRank RegionGrower::rank(const Candidate& c) const {
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
-    const double turn = dihedral_cosine(face_normal(Surface::face_of(c.halfedge)),
+    const double turn = dihedral_cosine(face_normal(delaunay_, surface_, Surface::face_of(c.halfedge)),
                                         triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex)));
     return CandidateRank{static_cast<float>(c.radius), turn, c.apex};
 }
@@ -458,122 +460,6 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     return DBRG_OK;
 }
 
-// Where S crosses a Delaunay tetrahedron through two of its faces, the other two span the same four outer
-// edges. The candidate order sees one edge at a time, and where the four corners are nearly on a circle (a
-// flat sliver: both diagonals of a quadrilateral are Delaunay edges) its choice between the two pairs is
-// close to arbitrary. Take the pair with the smaller Delaunay balls instead (ball_radius, the size that
-// advancing-front reconstruction ranks candidates by): mostly the Delaunay diagonal of the quadrilateral.
-// Only edges whose four corners are all inside S are flipped, so the topology stays as grown.
-dbrg_status RegionGrower::flip_to_smaller_balls() {
-    // Faces the flips add are visited too. Each flip replaces two faces by two with smaller ball radii than
-    // the larger of the two it removes, so the radii of S, sorted, decrease and the flips come to an end.
-    for (uint32_t f = 0; f < surface_.face_count(); ++f) {
-        for (uint32_t i = 0; i < 3 && !surface_.face_removed(f); ++i) DBRG_PROPAGATE(flip_if_smaller(3 * f + i));
-    }
-    return DBRG_OK;
-}
-
-// Flips the edge of `halfedge` (see flip_to_smaller_balls) if that gives smaller Delaunay balls and no
-// fold sharper than theta_sliver.
-dbrg_status RegionGrower::flip_if_smaller(uint32_t halfedge) {
-    const uint32_t twin = surface_.twin(halfedge);
-    if (twin == NO_HALFEDGE) return DBRG_OK;
-    const uint32_t face = Surface::face_of(halfedge), other = Surface::face_of(twin);
-    const uint32_t a = surface_.origin(halfedge), b = surface_.target(halfedge);
-    const uint32_t c = surface_.target(Surface::next(halfedge)), d = surface_.target(Surface::next(twin));
-    // Cheapest first: most pairs are the Delaunay pair of their four corners already.
-    const auto holds = [&](uint32_t x, uint32_t y, uint32_t z, uint32_t w) {
-        return in_diametral_ball(delaunay_.point(x), delaunay_.point(y), delaunay_.point(z), delaunay_.point(w));
-    };
-    if (c == d || !(holds(a, b, c, d) || holds(b, a, d, c)) || holds(c, a, d, b) || holds(d, b, c, a)) return DBRG_OK;
-    const uint32_t tet = tet_with_corners(surface_.face_tet(face), a, b, c, d);
-    if (tet == NO_TET) return DBRG_OK;
-    for (uint32_t corner : {a, b, c, d}) {
-        if (surface_.is_boundary_vertex(corner) || surface_.is_pinched(corner)) return DBRG_OK;
-    }
-    if (surface_.find_halfedge(c, d) != NO_HALFEDGE || surface_.find_halfedge(d, c) != NO_HALFEDGE) return DBRG_OK;
-    const double now = fmax(ball_radius(a, b, c, tet), ball_radius(b, a, d, tet));
-    if (!(fmax(ball_radius(c, a, d, tet), ball_radius(d, b, c, tet)) < now)) return DBRG_OK;
-    // The fold test of §3.2.1 for the new faces (c, a, d) and (d, b, c), and no loss of smoothness: the sum
-    // of the cosines of the dihedral angles at the pair's five edges (its inner edge and the outer edges
-    // c->a, b->c of `face` and a->d, d->b of `other`) must not drop.
-    const Vec3 old1 = face_normal(face), old2 = face_normal(other);
-    const Vec3 new1 = triangle_normal(delaunay_.point(c), delaunay_.point(a), delaunay_.point(d));
-    const Vec3 new2 = triangle_normal(delaunay_.point(d), delaunay_.point(b), delaunay_.point(c));
-    double old_smoothness = dihedral_cosine(old1, old2), new_smoothness = dihedral_cosine(new1, new2);
-    bool too_sharp = new_smoothness <= cos_sliver_;
-    const uint32_t outer[4] = {Surface::prev(halfedge), Surface::next(halfedge), Surface::next(twin), Surface::prev(twin)};
-    for (uint32_t k = 0; k < 4; ++k) {
-        const Vec3 across = face_normal(Surface::face_of(surface_.twin(outer[k])));
-        // c->a lies on new face (c, a, d), b->c on (d, b, c), a->d on (c, a, d) and d->b on (d, b, c).
-        const double after = dihedral_cosine(k % 2 == 0 ? new1 : new2, across);
-        old_smoothness += dihedral_cosine(k < 2 ? old1 : old2, across);
-        new_smoothness += after;
-        too_sharp = too_sharp || after <= cos_sliver_;
-    }
-    if (too_sharp || new_smoothness < old_smoothness) return DBRG_OK;
-    radius_sum_ -= face_radius(face) + face_radius(other);
-    if (!surface_.remove_face(face) || !surface_.remove_face(other)) return context_.fail_out_of_memory();
-    const uint32_t added[2][3] = {{c, a, d}, {d, b, c}};
-    for (const auto& corners : added) {
-        // Valid: the two removed faces left a hole of four edges between closed fans, and c-d is no edge.
-        const FaceCheck check = surface_.check_face(corners[0], corners[1], corners[2]);
-        if (check.verdict != FaceCheck::valid || check.pinches > 0) {
-            return context_.fail(DBRG_ERR_INTERNAL, "an edge flip left a face that does not fit");
-        }
-        if (surface_.add_face(corners[0], corners[1], corners[2], tet, check) == NO_FACE) return context_.fail_out_of_memory();
-        radius_sum_ += circumradius(delaunay_.point(corners[0]), delaunay_.point(corners[1]), delaunay_.point(corners[2]));
-        DBRG_PROPAGATE(report_step());
-    }
-    return DBRG_OK;
-}
-
-// The tetrahedron with corners a, b, c, d, if it is t or t's neighbour across its face (a, b, c).
-uint32_t RegionGrower::tet_with_corners(uint32_t t, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const {
-    if (t == NO_TET) return NO_TET;
-    const uint32_t lf = fourth_corner(t, a, b, c);
-    if (delaunay_.tet_vertex(t, lf) == d) return t;
-    const uint32_t neighbour = delaunay_.tet_adjacent(t, lf);
-    return delaunay_.tet_vertex(neighbour, delaunay_.tet_adjacent_face(t, lf)) == d ? neighbour : NO_TET;
-}
-
-// The local index of the corner of tetrahedron t other than u, v and w (three of its corners).
-uint32_t RegionGrower::fourth_corner(uint32_t t, uint32_t u, uint32_t v, uint32_t w) const {
-    uint32_t lv = 0;
-    while (lv < 3) {
-        const uint32_t x = delaunay_.tet_vertex(t, lv);
-        if (x != u && x != v && x != w) break;
-        ++lv;
-    }
-    return lv;
-}
-
-// Radius of the Delaunay ball of the Delaunay triangle (u, v, w), a face of tetrahedron t: the smallest
-// ball through u, v, w with no point inside. The balls through them that hold neither fourth corner of the
-// two tetrahedra sharing the triangle are the empty ones, so it is the triangle's diametral ball when that
-// holds neither, otherwise the circumscribed ball of the tetrahedron whose fourth corner it holds. Corners
-// are taken in id order, so that a triangle or tetrahedron gets the same radius whichever way it is reached.
-double RegionGrower::ball_radius(uint32_t u, uint32_t v, uint32_t w, uint32_t t) const {
-    const uint32_t lf = fourth_corner(t, u, v, w);
-    const uint32_t neighbour = delaunay_.tet_adjacent(t, lf);
-    uint32_t fourth[2] = {delaunay_.tet_vertex(t, lf), delaunay_.tet_vertex(neighbour, delaunay_.tet_adjacent_face(t, lf))};
-    uint32_t corners[4] = {u, v, w, 0};
-    std::sort(corners, corners + 3);
-    std::sort(fourth, fourth + 2);
-    for (uint32_t d : fourth) {
-        if (d == INFINITE_VERTEX) continue;  // sorted last
-        if (!in_diametral_ball(delaunay_.point(corners[0]), delaunay_.point(corners[1]), delaunay_.point(corners[2]),
-                               delaunay_.point(d))) {
-            continue;
-        }
-        corners[3] = d;
-        std::sort(corners, corners + 4);
-        return tet_circumradius(delaunay_.point(corners[0]), delaunay_.point(corners[1]), delaunay_.point(corners[2]),
-                                delaunay_.point(corners[3]));
-    }
-    return circumradius(delaunay_.point(corners[0]), delaunay_.point(corners[1]), delaunay_.point(corners[2]));
-}
-
 // Tells the step observer, if any, that S has changed.
 dbrg_status RegionGrower::report_step() const {
     return observer_ ? observer_(observer_user_, surface_, points_reached()) : DBRG_OK;
@@ -604,7 +490,7 @@ void RegionGrower::release_queues() {
 dbrg_status RegionGrower::remove_islands() {
     Array<uint32_t> removed(context_.memory);
     if (!surface_.remove_small_components(MIN_SEEDED_COMPONENT_FACES, removed)) return context_.fail_out_of_memory();
-    for (uint32_t f : removed) radius_sum_ -= face_radius(f);
+    for (uint32_t f : removed) radius_sum_ -= face_radius(delaunay_, surface_, f);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
     return DBRG_OK;
 }
@@ -613,19 +499,9 @@ dbrg_status RegionGrower::remove_islands() {
 dbrg_status RegionGrower::resolve_pinches(Array<uint32_t>& removed) {
     const size_t first = removed.size();
     if (!surface_.remove_pinches(removed)) return context_.fail_out_of_memory();
-    for (size_t i = first; i < removed.size(); ++i) radius_sum_ -= face_radius(removed[i]);
+    for (size_t i = first; i < removed.size(); ++i) radius_sum_ -= face_radius(delaunay_, surface_, removed[i]);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size() - first);
     return DBRG_OK;
-}
-
-Vec3 RegionGrower::face_normal(uint32_t f) const {
-    return triangle_normal(delaunay_.point(surface_.corner(f, 0)), delaunay_.point(surface_.corner(f, 1)),
-                           delaunay_.point(surface_.corner(f, 2)));
-}
-
-double RegionGrower::face_radius(uint32_t f) const {
-    return circumradius(delaunay_.point(surface_.corner(f, 0)), delaunay_.point(surface_.corner(f, 1)),
-                        delaunay_.point(surface_.corner(f, 2)));
 }
 
 } // namespace dbrg

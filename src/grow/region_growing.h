@@ -12,6 +12,7 @@
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/candidate_queue.h"
+#include "grow/edge_flips.h"
 #include "surface/surface.h"
 
 namespace dbrg {
@@ -28,19 +29,23 @@ public:
 
     // Grows S from the highest point, then from further seeds while unused points can start a
     // component of their own (up to params.max_components), then flips edges inside S to the smaller
-    // Delaunay balls (flip_to_smaller_balls). Fills the growing fields of context.stats.
+    // Delaunay balls (EdgeFlipper::flip_all). Fills the growing fields of context.stats.
     dbrg_status grow();
 
     // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
     // changed around it since it was last examined. Adds context.stats.hole_triangles_delaunay.
     dbrg_status regrow_holes();
 
-    // Called after every face added to S with the share of points S has reached (tests check S after
-    // every step; the pipeline takes snapshots). A status other than DBRG_OK stops growing with it.
-    using StepObserver = dbrg_status (*)(void* user, const Surface& surface, double points_reached);
+    // Flips the edges that growing's flips passed over because a corner was on the boundary of S: hole
+    // filling calls it once the holes are closed.
+    dbrg_status flip_deferred() { return flipper_.flip_deferred(radius_sum_); }
+    const EdgeFlipper& edge_flips() const { return flipper_; }
+
+    // Called after every face added to S, flips included (see StepObserver).
     void observe_steps(StepObserver observer, void* user) {
         observer_ = observer;
         observer_user_ = user;
+        flipper_.observe_steps(observer, user);
     }
 
     // Why a boundary half-edge is on the boundary; faces added after growing count as unresolved.
@@ -69,17 +74,9 @@ private:
     dbrg_status report_step() const;
     // The share of the points S has now (pinch removal may give some back).
     double points_reached() const { return double(surface_.used_vertex_count()) / delaunay_.vertex_count(); }
-    dbrg_status flip_to_smaller_balls();
-    dbrg_status flip_if_smaller(uint32_t halfedge);
-    uint32_t tet_with_corners(uint32_t tet, uint32_t a, uint32_t b, uint32_t c, uint32_t d) const;
-    uint32_t fourth_corner(uint32_t tet, uint32_t u, uint32_t v, uint32_t w) const;
-    double ball_radius(uint32_t u, uint32_t v, uint32_t w, uint32_t tet) const;
     dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed);
     dbrg_status resolve_pinches(Array<uint32_t>& removed);
     dbrg_status remove_islands();
-    // Recomputed from the points rather than stored: cheaper in memory, and exact copies of the originals.
-    Vec3 face_normal(uint32_t face) const;
-    double face_radius(uint32_t face) const;
 
     const Tetrahedralization& delaunay_;
     Surface& surface_;
@@ -94,6 +91,7 @@ private:
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
+    EdgeFlipper flipper_;
 };
 
 } // namespace dbrg

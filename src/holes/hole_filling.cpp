@@ -10,6 +10,7 @@
 #include <math.h>
 
 #include "core/status.h"
+#include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
 
 namespace dbrg {
@@ -24,6 +25,8 @@ HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, Reg
 dbrg_status HoleFiller::fill() {
     DBRG_PROPAGATE(fill_holes());
     DBRG_PROPAGATE(remove_small_handles());
+    // Growing's flips passed over the edges with a corner on a hole's rim; the holes are closed now.
+    DBRG_PROPAGATE(grower_.flip_deferred());
     dbrg_stats& stats = context_.stats;
     stats.handles_removed = handles_removed_;
     stats.hole_triangles_added += handle_triangles_added_;
@@ -221,7 +224,7 @@ bool HoleFiller::ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, b
     const Vec3 normal = triangle_normal(delaunay_.point(apex), delaunay_.point(previous), delaunay_.point(next));
     if (squared_length(normal) == 0) return false;
     for (uint32_t shared : check.shared) {
-        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(Surface::face_of(shared))) <= cos_fold_limit_) {
+        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(shared))) <= cos_fold_limit_) {
             return false;
         }
     }
@@ -293,18 +296,13 @@ dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t te
     return DBRG_OK;
 }
 
-Vec3 HoleFiller::face_normal(uint32_t f) const {
-    return triangle_normal(delaunay_.point(surface_.corner(f, 0)), delaunay_.point(surface_.corner(f, 1)),
-                           delaunay_.point(surface_.corner(f, 2)));
-}
-
 // The mean of the unit normals of the faces around v (paper §5).
 Vec3 HoleFiller::vertex_normal(uint32_t v) const {
     Vec3 sum{0, 0, 0};
     surface_.for_each_fan(v, [&](uint32_t start) {
         uint32_t h = start;
         do {
-            sum = sum + face_normal(Surface::face_of(h));
+            sum = sum + face_normal(delaunay_, surface_, Surface::face_of(h));
             h = surface_.rotate(h);
         } while (h != NO_HALFEDGE && h != start);
     });

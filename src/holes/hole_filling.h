@@ -25,8 +25,9 @@ public:
     HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
 
     // Fills every hole of at most params.max_hole_edges edges that can be filled validly; leaves the
-    // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles). Fills the
-    // hole and handle fields of context.stats.
+    // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles) and flips
+    // the edges growing deferred (RegionGrower::flip_deferred). Fills the hole and handle fields of
+    // context.stats.
     dbrg_status fill();
 
 private:
@@ -82,7 +83,6 @@ private:
     bool record_removed(uint32_t face, FaceJournal& journal) const;
     dbrg_status undo(FaceJournal& journal, size_t position);
     dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, FaceJournal* journal);
-    Vec3 face_normal(uint32_t f) const;
     Vec3 vertex_normal(uint32_t v) const;
 
     const Tetrahedralization& delaunay_;

@@ -1,0 +1,24 @@
+// The geometry of a face of the surface S, from the points of the tetrahedralization it was grown over.
+// Recomputed rather than stored: cheaper in memory, and exact copies of what growing computed.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/vec3.h"
+#include "delaunay/tetrahedralization.h"
+#include "grow/triangle_geometry.h"
+#include "surface/surface.h"
+
+namespace dbrg {
+
+inline Vec3 face_normal(const Tetrahedralization& delaunay, const Surface& surface, uint32_t f) {
+    return triangle_normal(delaunay.point(surface.corner(f, 0)), delaunay.point(surface.corner(f, 1)),
+                           delaunay.point(surface.corner(f, 2)));
+}
+
+inline double face_radius(const Tetrahedralization& delaunay, const Surface& surface, uint32_t f) {
+    return circumradius(delaunay.point(surface.corner(f, 0)), delaunay.point(surface.corner(f, 1)),
+                        delaunay.point(surface.corner(f, 2)));
+}
+
+} // namespace dbrg
