@@ -8,7 +8,9 @@ it. Not a test: run it by hand on a release build.
     python3 tests/bench/bench_reconstruct.py --cgal      # against CGAL's advancing front, same inputs
     python3 tests/bench/bench_reconstruct.py --threads 2 # one thread against two on the large samples
 
-Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself) and
+Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself),
+two of them refined by Loop subdivision (subdivide.py: the spot to about 190k points and the rocker arm to
+about 160k; with --large also to 750k and 640k), their recall measured against the subdivided mesh, and
 generated samples of closed and open shapes (100k points; 1M and 2M too with --large). With --holes: the
 data meshes and generated poor data (graded density, sharp edges, a thin plate), each reconstructed
 with and without hole filling.
@@ -19,6 +21,8 @@ import os
 import subprocess
 import sys
 import tempfile
+
+from subdivide import subdivide_file
 
 MESH_SUFFIXES = (".obj", ".off", ".ply")
 
@@ -85,6 +89,14 @@ def sample_file(dbrg, source, workdir):
         subprocess.run([dbrg, "reconstruct", "--demo", "--demo-shape", shape, "--demo-points", str(points),
                         "-o", path, "--quiet"], check=True)
     return path
+
+
+def add_subdivided(inputs, data, subdivided, workdir):
+    """The data meshes refined by Loop subdivision, each file both the input and the reference."""
+    for name, levels in subdivided:
+        path = os.path.join(workdir, f"{os.path.splitext(name)[0]}-loop{levels}.ply")
+        points = subdivide_file(os.path.join(data, name), levels, path)
+        inputs.append((f"{name} Loop x{levels} ({points // 1000}k)", path, path))
 
 
 def compare_threads(dbrg, threads, inputs, workdir, repeats=3):
@@ -165,10 +177,14 @@ def main():
     for points in sizes:
         for shape in ("torus", "bumpy_sphere", "saddle"):
             inputs.append((f"{shape} {points // 1000}k", ("demo", shape, points), None))
+    subdivided = [("spot.obj", 3), ("rocker-arm.off", 2)] + ([("spot.obj", 4), ("rocker-arm.off", 3)] if args.large else [])
+    subdivided = [(name, levels) for name, levels in subdivided if os.path.exists(os.path.join(args.data, name))]
 
     if args.threads:
         with tempfile.TemporaryDirectory() as workdir:
-            compare_threads(args.dbrg, args.threads, [i for i in inputs if isinstance(i[1], tuple)], workdir)
+            large = [i for i in inputs if isinstance(i[1], tuple)]
+            add_subdivided(large, args.data, subdivided, workdir)
+            compare_threads(args.dbrg, args.threads, large, workdir)
         return
     if args.cgal:
         cgal = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(args.dbrg)))),
@@ -177,12 +193,14 @@ def main():
             sys.exit(f"no {cgal}: install libcgal-dev, reconfigure, and build it: "
                      f"ninja -C build tests/bench/cgal-advancing-front")
         with tempfile.TemporaryDirectory() as workdir:
+            add_subdivided(inputs, args.data, subdivided, workdir)
             compare_with_cgal(args.dbrg, cgal, inputs, workdir)
         return
     print("| input | n | v | t | DT s | RG s | HF s | total s | Mpts/s | peak B/pt | boundary edges "
           "| loops | non-manifold edges | non-manifold vertices | oriented | genus | face recall |")
     print("|---|" + "---:|" * 16)
     with tempfile.TemporaryDirectory() as workdir:
+        add_subdivided(inputs, args.data, subdivided, workdir)
         for name, source, reference in inputs:
             stats, report = measure(args.dbrg, source, workdir, reference)
             print(row(name, stats, report), flush=True)
