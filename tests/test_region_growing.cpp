@@ -201,21 +201,29 @@ TEST_CASE("the edge flips come to rest: none is left to make, and only edges at 
     CHECK(flips > 0);
 }
 
-TEST_CASE("hole filling makes the flips growing deferred at the holes' rims") {
-    // Growing leaves holes along the cylinder's sharp rims; filling closes them. (A sample where a flip
-    // waits for a hole: most flips are made while growing.)
-    Setup setup(samples::sample(samples::Shape::capped_cylinder, 3000, 3));
-    RegionGrower grower(setup.delaunay, setup.surface, setup.context);
-    REQUIRE(grower.grow() == DBRG_OK);
-    REQUIRE(boundary_halfedges(setup.surface) > 0);
-    const uint32_t flips_while_growing = grower.edge_flips().flip_count();
-    HoleFiller filler(setup.delaunay, setup.surface, grower, setup.context);
-    REQUIRE(filler.fill() == DBRG_OK);
-    CHECK(boundary_halfedges(setup.surface) == 0);
-    const FlipsLeft left = flips_left(grower, setup.surface);
-    CHECK(left.flips == 0);
-    CHECK(left.deferred == 0);
-    CHECK(grower.edge_flips().flip_count() > flips_while_growing);
+TEST_CASE("hole filling makes the flips growing deferred, and those around the faces it added") {
+    // Growing leaves holes along the cylinder's sharp rims, where it defers flips, and on the sparse side
+    // of the graded sphere, where the filled holes' new faces change what is around their edges; filling
+    // closes both. (Samples where flips wait for hole filling: most are made while growing.)
+    struct Input {
+        samples::Shape shape;
+        size_t points;
+        uint64_t seed;
+    };
+    for (const Input& input : {Input{samples::Shape::capped_cylinder, 3000, 3}, Input{samples::Shape::graded_sphere, 2000, 1}}) {
+        Setup setup(samples::sample(input.shape, input.points, input.seed));
+        RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+        REQUIRE(grower.grow() == DBRG_OK);
+        REQUIRE(boundary_halfedges(setup.surface) > 0);
+        const uint32_t flips_while_growing = grower.edge_flips().flip_count();
+        HoleFiller filler(setup.delaunay, setup.surface, grower, setup.context);
+        REQUIRE(filler.fill() == DBRG_OK);
+        CHECK(boundary_halfedges(setup.surface) == 0);
+        const FlipsLeft left = flips_left(grower, setup.surface);
+        CHECK(left.flips == 0);
+        CHECK(left.deferred == 0);
+        CHECK(grower.edge_flips().flip_count() > flips_while_growing);
+    }
 }
 
 TEST_CASE("a cancelling progress callback stops growing") {

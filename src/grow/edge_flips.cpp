@@ -30,6 +30,7 @@ dbrg_status EdgeFlipper::flip_all(double& radius_sum) {
         }
     }
     revisit_.release();
+    faces_after_flip_all_ = surface_.face_count();
     return DBRG_OK;
 }
 
@@ -37,6 +38,16 @@ dbrg_status EdgeFlipper::flip_deferred(double& radius_sum) {
     Array<uint32_t> edges(context_.memory);
     edges.swap(deferred_);  // visits defer again the edges still on the boundary
     for (uint32_t h : edges) DBRG_PROPAGATE(visit(h, radius_sum));
+    // A face that hole filling added has no tetrahedron when it is an ear, so its edges are tried from the
+    // face across them too.
+    const uint32_t faces = surface_.face_count();
+    for (uint32_t f = faces_after_flip_all_; f < faces; ++f) {
+        for (uint32_t h = 3 * f; h < 3 * f + 3 && !surface_.face_removed(f); ++h) {
+            DBRG_PROPAGATE(visit(h, radius_sum));
+            const uint32_t twin = surface_.twin(h);
+            if (twin != NO_HALFEDGE && !surface_.face_removed(f)) DBRG_PROPAGATE(visit(twin, radius_sum));
+        }
+    }
     deferred_.release();
     revisit_.release();
     return DBRG_OK;

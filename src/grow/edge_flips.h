@@ -33,7 +33,8 @@ public:
     // flip_deferred. `radius_sum`, the sum of the circumradii of S's faces, follows the flips.
     dbrg_status flip_all(double& radius_sum);
 
-    // Visits the remembered edges again: hole filling calls it once the holes next to them are closed.
+    // Visits the remembered edges again, and the edges of every face added since flip_all (from either
+    // side): hole filling calls it once the holes are closed, which changed what is around those edges.
     dbrg_status flip_deferred(double& radius_sum);
 
     enum class Decision { keep, defer, flip };
@@ -59,6 +60,7 @@ private:
     Array<uint32_t> deferred_;  // a half-edge of each edge deferred
     Array<uint32_t> revisit_;   // half-edges whose neighbourhood a flip changed, to be visited again
     uint32_t flips_ = 0;
+    uint32_t faces_after_flip_all_ = 0;  // faces from this id on were added later (hole filling)
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
 };

@@ -36,8 +36,8 @@ public:
     // changed around it since it was last examined. Adds context.stats.hole_triangles_delaunay.
     dbrg_status regrow_holes();
 
-    // Flips the edges that growing's flips passed over because a corner was on the boundary of S: hole
-    // filling calls it once the holes are closed.
+    // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
+    // those around the faces added since: hole filling calls it once the holes are closed.
     dbrg_status flip_deferred() { return flipper_.flip_deferred(radius_sum_); }
     const EdgeFlipper& edge_flips() const { return flipper_; }
 

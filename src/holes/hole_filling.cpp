@@ -25,7 +25,8 @@ HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, Reg
 dbrg_status HoleFiller::fill() {
     DBRG_PROPAGATE(fill_holes());
     DBRG_PROPAGATE(remove_small_handles());
-    // Growing's flips passed over the edges with a corner on a hole's rim; the holes are closed now.
+    // Growing's flips passed over the edges with a corner on a hole's rim; the holes are closed now, and
+    // what is around the filled holes has changed.
     DBRG_PROPAGATE(grower_.flip_deferred());
     dbrg_stats& stats = context_.stats;
     stats.handles_removed = handles_removed_;
