@@ -338,8 +338,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     snapshots.point_count = points.count;
     params.snapshot = SnapshotProbe::take;
     params.snapshot_user = &snapshots;
-    // A caller of 0.1.0 (a struct without the snapshot fields) gets none.
-    const uint32_t snapshots_asked = params.struct_size > offsetof(dbrg_params, snapshot) ? params.snapshot_count : 0;
+    // A caller of 0.1.0 (a struct without the snapshot fields) gets none, and nobody more than the limit.
+    const uint32_t snapshots_asked = params.struct_size > offsetof(dbrg_params, snapshot)
+                                         ? std::min(params.snapshot_count, DBRG_MAX_SNAPSHOTS)
+                                         : 0;
     mangle_points(mangle, mangle_amount, points);
     // NaN has no place in an ordered map; sets with one are judged before duplicates matter.
     const std::vector<uint32_t> canonical = set.finite ? canonical_indices(set.xyz) : std::vector<uint32_t>();

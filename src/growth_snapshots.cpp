@@ -15,7 +15,8 @@ void GrowthSnapshots::attach(RegionGrower& grower) {
 dbrg_status GrowthSnapshots::on_step(void* self, const Surface& surface, double points_reached) {
     GrowthSnapshots& snapshots = *static_cast<GrowthSnapshots*>(self);
     if (snapshots.finished_) return DBRG_OK;  // hole filling grows S again through the same grower
-    const uint32_t count = snapshots.context_.params.snapshot_count;
+    const uint32_t asked = snapshots.context_.params.snapshot_count;
+    const uint32_t count = asked < DBRG_MAX_SNAPSHOTS ? asked : DBRG_MAX_SNAPSHOTS;
     // Thresholds 1/K .. (K - 1)/K while growing; finish() takes the K-th. A step that passes several
     // (a small input, a large K) takes one snapshot for all of them, so there are never more calls than
     // steps, whatever K is.

@@ -275,6 +275,17 @@ TEST_CASE("a snapshot count larger than the steps of growth gives at most one sn
     CHECK(snapshots.triangles.size() <= 2 * xyz.size() / 3);  // no more than the faces grown
 }
 
+TEST_CASE("a snapshot count above DBRG_MAX_SNAPSHOTS is taken as DBRG_MAX_SNAPSHOTS") {
+    // Found by fuzzing: one snapshot for each of a few thousand points copied the surface each time.
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 3000);
+    for (uint32_t asked : {DBRG_MAX_SNAPSHOTS + 1, UINT32_MAX}) {
+        Snapshots snapshots;
+        const dbrg_params params = snapshots.params(asked);
+        REQUIRE(test::reconstruct(xyz, &params).status == DBRG_OK);
+        CHECK(snapshots.triangles.size() == DBRG_MAX_SNAPSHOTS);
+    }
+}
+
 TEST_CASE("a snapshot callback can cancel") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
     Snapshots snapshots;

@@ -83,6 +83,10 @@ DBRG_API const char* dbrg_status_string(dbrg_status status);
 /* The value of an adjacency entry with no neighbour (a convex-hull face). */
 #define DBRG_NO_NEIGHBOR UINT32_MAX
 
+/* EXPERIMENTAL. The most growth snapshots a call takes (dbrg_params.snapshot_count): each copies the
+ * surface grown so far, so a count near the number of points would cost time quadratic in it. */
+#define DBRG_MAX_SNAPSHOTS 1000u
+
 /* ------------------------------------------------------------------------------------------------
  * Caller-supplied memory allocation. Every byte the library allocates during a call or holds in a
  * result object goes through it; no global allocator is ever set.
@@ -198,8 +202,8 @@ typedef struct dbrg_params {
 
     /* EXPERIMENTAL. NULL (the default) or 0 snapshots: none. Otherwise called on the calling thread up to
      * `snapshot_count` times while the surface grows: when the share of points reached first passes
-     * 1/K, 2/K, ... (K = snapshot_count; one call for several shares passed at once) and once when
-     * growing ends, before hole filling. */
+     * 1/K, 2/K, ... (K = snapshot_count, taken as DBRG_MAX_SNAPSHOTS when larger; one call for several
+     * shares passed at once) and once when growing ends, before hole filling. */
     dbrg_snapshot_fn snapshot;
     void* snapshot_user;
     uint32_t snapshot_count;

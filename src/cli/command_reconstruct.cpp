@@ -70,9 +70,9 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
     if (args.has("--max-components") && !parse_count(args.value("--max-components"), params.max_components)) {
         return error = "--max-components takes a whole number", false;
     }
-    // A file per snapshot: a thousand is more than any figure needs.
+    // A file per snapshot: the library's limit, a thousand, is more than any figure needs.
     if (args.has("--snapshots") &&
-        (!parse_count(args.value("--snapshots"), params.snapshot_count) || params.snapshot_count > 1000)) {
+        (!parse_count(args.value("--snapshots"), params.snapshot_count) || params.snapshot_count > DBRG_MAX_SNAPSHOTS)) {
         return error = "--snapshots takes a whole number up to 1000", false;
     }
     if (args.has("--threads") && !parse_count(args.value("--threads"), params.threads)) {

@@ -17,6 +17,7 @@ DBRG_VERSION_NUMBER = DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DB
 
 DBRG_MAX_POINTS = 0x7FFFFFFF
 DBRG_NO_NEIGHBOR = 0xFFFFFFFF
+DBRG_MAX_SNAPSHOTS = 1000
 
 # Every enum in the header has values 0..10, so the compiler gives it the size of an int.
 c_enum = c_int

@@ -15,6 +15,7 @@ pub const DBRG_VERSION_STRING: &str = "0.2.0";
 
 pub const DBRG_MAX_POINTS: usize = 0x7fff_ffff;
 pub const DBRG_NO_NEIGHBOR: u32 = u32::MAX;
+pub const DBRG_MAX_SNAPSHOTS: u32 = 1000;
 
 pub type dbrg_status = c_uint;
 pub const DBRG_OK: dbrg_status = 0;
