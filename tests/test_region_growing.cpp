@@ -59,16 +59,19 @@ std::vector<double> shifted(std::vector<double> xyz, double dx) {
 
 } // namespace
 
-TEST_CASE("the surface is a valid oriented manifold after every insertion") {
+TEST_CASE("the surface is a valid oriented manifold after every insertion, edge flips included") {
+    uint32_t flips = 0;
     for (samples::Shape shape : {samples::Shape::sphere, samples::Shape::torus, samples::Shape::saddle}) {
         Setup setup(samples::sample(shape, 600));
         RegionGrower grower(setup.delaunay, setup.surface, setup.context);
         uint32_t checks = 0;
         grower.observe_steps(surface_is_valid, &checks);
         REQUIRE(grower.grow() == DBRG_OK);
-        CHECK(checks == setup.surface.face_count());
+        CHECK(checks == setup.surface.face_count());  // every face, those the flips added too
         CHECK(checks > 1000);
+        flips += grower.edge_flips().flip_count();
     }
+    CHECK(flips > 0);
 }
 
 TEST_CASE("diametral balls and tetrahedron circumradii, which rank the two ways through a tetrahedron") {
@@ -165,9 +168,10 @@ TEST_CASE("the open-surface test refuses candidates and records why the edges st
 
 namespace {
 
-// What the edge flips would still do with the live edges of S: flips left, and edges deferred.
+// What the edge flips would still do with the live edges of S: flips left, edges deferred, and edges whose
+// two half-edges get different decisions (the pass visits an edge from one side only).
 struct FlipsLeft {
-    uint32_t flips = 0, deferred = 0;
+    uint32_t flips = 0, deferred = 0, one_sided = 0;
 };
 FlipsLeft flips_left(const RegionGrower& grower, const Surface& surface) {
     FlipsLeft left;
@@ -177,6 +181,8 @@ FlipsLeft flips_left(const RegionGrower& grower, const Surface& surface) {
         const EdgeFlipper::Decision decision = grower.edge_flips().decide(h, tet);
         left.flips += decision == EdgeFlipper::Decision::flip ? 1 : 0;
         left.deferred += decision == EdgeFlipper::Decision::defer ? 1 : 0;
+        const uint32_t twin = surface.twin(h);
+        if (twin != NO_HALFEDGE && grower.edge_flips().decide(twin, tet) != decision) ++left.one_sided;
     }
     return left;
 }
@@ -189,12 +195,10 @@ TEST_CASE("the edge flips come to rest: none is left to make, and only edges at 
                                  samples::Shape::bumpy_sphere}) {
         Setup setup(samples::sample(shape, 4000));
         RegionGrower grower(setup.delaunay, setup.surface, setup.context);
-        uint32_t checks = 0;
-        grower.observe_steps(surface_is_valid, &checks);
         REQUIRE(grower.grow() == DBRG_OK);
-        CHECK(checks == setup.surface.face_count());  // the flips' faces were checked too
         const FlipsLeft left = flips_left(grower, setup.surface);
         CHECK(left.flips == 0);
+        CHECK(left.one_sided == 0);
         if (boundary_halfedges(setup.surface) == 0) CHECK(left.deferred == 0);
         flips += grower.edge_flips().flip_count();
     }
@@ -222,7 +226,26 @@ TEST_CASE("hole filling makes the flips growing deferred, and those around the f
         const FlipsLeft left = flips_left(grower, setup.surface);
         CHECK(left.flips == 0);
         CHECK(left.deferred == 0);
+        CHECK(left.one_sided == 0);
         CHECK(grower.edge_flips().flip_count() > flips_while_growing);
+    }
+}
+
+TEST_CASE("after hole filling no flip is left on closed shapes, and both sides of every edge agree") {
+    for (samples::Shape shape : {samples::Shape::sphere, samples::Shape::torus, samples::Shape::double_torus,
+                                 samples::Shape::bumpy_sphere, samples::Shape::cube, samples::Shape::capped_cylinder,
+                                 samples::Shape::graded_sphere, samples::Shape::thin_plate}) {
+        for (uint64_t seed : {1, 2}) {
+            Setup setup(samples::sample(shape, 3000, seed));
+            RegionGrower grower(setup.delaunay, setup.surface, setup.context);
+            REQUIRE(grower.grow() == DBRG_OK);
+            HoleFiller filler(setup.delaunay, setup.surface, grower, setup.context);
+            REQUIRE(filler.fill() == DBRG_OK);
+            const FlipsLeft left = flips_left(grower, setup.surface);
+            CHECK(left.flips == 0);
+            CHECK(left.one_sided == 0);
+            if (boundary_halfedges(setup.surface) == 0) CHECK(left.deferred == 0);
+        }
     }
 }
 

@@ -34,20 +34,25 @@ dbrg_status EdgeFlipper::flip_all(double& radius_sum) {
     return DBRG_OK;
 }
 
-dbrg_status EdgeFlipper::flip_deferred(double& radius_sum) {
+dbrg_status EdgeFlipper::flip_deferred() {
+    // No sum of radii to keep from here on: the open-surface test is done with.
+    double radius_sum = 0;
     Array<uint32_t> edges(context_.memory);
-    edges.swap(deferred_);  // visits defer again the edges still on the boundary
+    edges.swap(deferred_);
     for (uint32_t h : edges) DBRG_PROPAGATE(visit(h, radius_sum));
-    // A face that hole filling added has no tetrahedron when it is an ear, so its edges are tried from the
-    // face across them too.
+    // The edges of the faces added since flip_all, once each: the rims of the holes that filling closed
+    // (boundary edges while growing, so never deferred), and deferred edges whose faces filling removed
+    // and put back under new ids (their listed ids are stale).
     const uint32_t faces = surface_.face_count();
     for (uint32_t f = faces_after_flip_all_; f < faces; ++f) {
         for (uint32_t h = 3 * f; h < 3 * f + 3 && !surface_.face_removed(f); ++h) {
-            DBRG_PROPAGATE(visit(h, radius_sum));
             const uint32_t twin = surface_.twin(h);
-            if (twin != NO_HALFEDGE && !surface_.face_removed(f)) DBRG_PROPAGATE(visit(twin, radius_sum));
+            if (twin != NO_HALFEDGE && (h < twin || Surface::face_of(twin) < faces_after_flip_all_)) {
+                DBRG_PROPAGATE(visit(h, radius_sum));
+            }
         }
     }
+    // Edges deferred again are on a boundary that nothing closes any more.
     deferred_.release();
     revisit_.release();
     return DBRG_OK;
@@ -89,7 +94,10 @@ EdgeFlipper::Decision EdgeFlipper::decide(uint32_t halfedge, uint32_t& tet) cons
     if (c == d || !(holds(a, b, c, d) || holds(b, a, d, c)) || holds(c, a, d, b) || holds(d, b, c, a)) {
         return Decision::keep;
     }
-    tet = tet_with_corners(surface_.face_tet(face), a, b, c, d);
+    // Either face may be an ear of hole filling (no tetrahedron): walk from the other one then, so that
+    // both half-edges of an edge get the same decision.
+    tet = surface_.face_tet(face) != NO_TET ? tet_with_corners(surface_.face_tet(face), a, b, c, d)
+                                            : tet_with_corners(surface_.face_tet(other), b, a, d, c);
     if (tet == NO_TET) return Decision::keep;
     for (uint32_t corner : {a, b, c, d}) {
         if (surface_.is_boundary_vertex(corner) || surface_.is_pinched(corner)) return Decision::defer;

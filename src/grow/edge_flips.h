@@ -33,9 +33,9 @@ public:
     // flip_deferred. `radius_sum`, the sum of the circumradii of S's faces, follows the flips.
     dbrg_status flip_all(double& radius_sum);
 
-    // Visits the remembered edges again, and the edges of every face added since flip_all (from either
-    // side): hole filling calls it once the holes are closed, which changed what is around those edges.
-    dbrg_status flip_deferred(double& radius_sum);
+    // Visits the remembered edges again, and the edges of every face added since flip_all: hole filling
+    // calls it once the holes are closed, which changed what is around those edges.
+    dbrg_status flip_deferred();
 
     enum class Decision { keep, defer, flip };
     // What a visit would do with the edge of `halfedge` now: flip it to the other two faces of tetrahedron

@@ -38,7 +38,7 @@ public:
 
     // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
     // those around the faces added since: hole filling calls it once the holes are closed.
-    dbrg_status flip_deferred() { return flipper_.flip_deferred(radius_sum_); }
+    dbrg_status flip_deferred() { return flipper_.flip_deferred(); }
     const EdgeFlipper& edge_flips() const { return flipper_; }
 
     // Called after every face added to S, flips included (see StepObserver).

@@ -9,34 +9,37 @@ Each level splits every triangle into four and smooths with Loop's weights (C. L
 surfaces based on triangles", 1987; Warren's vertex weights): an edge point is 3/8 of each end and 1/8 of
 each opposite corner, an old vertex of valence k keeps 1 - k*beta of itself and beta of each neighbour,
 beta = 3/16 for k = 3 and 3/(8k) otherwise. Border edges and vertices use the curve rule (1/2, 1/2 and
-3/4, 1/8, 1/8), so open meshes (the bunny) keep their openings.
+3/4, 1/8, 1/8), so open meshes (the bunny) keep their openings; a vertex where more than one border
+passes stays where it is. An edge with more than two faces is an error.
 """
 import struct
 import sys
 
 
 def read_mesh(path):
-    """Vertices [(x, y, z)] and triangles [(a, b, c)] of a text OBJ or OFF file; polygons become fans."""
+    """Vertices [(x, y, z)] and triangles [(a, b, c)] of a text OBJ or OFF file. Polygons become fans, faces
+    with a repeated corner are dropped, OBJ's negative (relative) indices are resolved, and fields after an
+    OFF face's corners (colours) are ignored."""
     vertices, faces = [], []
 
     def add_polygon(corners):
         for i in range(1, len(corners) - 1):
-            faces.append((corners[0], corners[i], corners[i + 1]))
+            triangle = (corners[0], corners[i], corners[i + 1])
+            if len(set(triangle)) == 3:
+                faces.append(triangle)
 
     with open(path) as f:
-        if path.endswith(".off"):
-            tokens = [t for line in f for t in line.split("#", 1)[0].split()]
-            if tokens[0] != "OFF":
+        if path.lower().endswith(".off"):
+            lines = (line.split("#", 1)[0].split() for line in f)
+            lines = [fields for fields in lines if fields]
+            if not lines[0][0].endswith("OFF"):
                 raise ValueError(f"{path}: not an OFF file")
-            n_vertices, n_faces = int(tokens[1]), int(tokens[2])
-            at = 4
-            for _ in range(n_vertices):
-                vertices.append(tuple(float(t) for t in tokens[at:at + 3]))
-                at += 3
-            for _ in range(n_faces):
-                count = int(tokens[at])
-                add_polygon([int(t) for t in tokens[at + 1:at + 1 + count]])
-                at += 1 + count
+            header = lines[0][1:] if len(lines[0]) > 1 else lines[1]  # counts on the first line or the next
+            body = lines[1:] if len(lines[0]) > 1 else lines[2:]
+            n_vertices, n_faces = int(header[0]), int(header[1])
+            vertices = [tuple(float(t) for t in fields[:3]) for fields in body[:n_vertices]]
+            for fields in body[n_vertices:n_vertices + n_faces]:
+                add_polygon([int(t) for t in fields[1:1 + int(fields[0])]])
         else:
             for line in f:
                 fields = line.split()
@@ -45,7 +48,8 @@ def read_mesh(path):
                 if fields[0] == "v":
                     vertices.append(tuple(float(t) for t in fields[1:4]))
                 elif fields[0] == "f":
-                    add_polygon([int(t.split("/")[0]) - 1 for t in fields[1:]])
+                    indices = [int(t.split("/")[0]) for t in fields[1:]]
+                    add_polygon([i - 1 if i > 0 else len(vertices) + i for i in indices])
     return vertices, faces
 
 
