@@ -141,10 +141,7 @@ dbrg_status EdgeFlipper::flip(uint32_t halfedge, uint32_t tet, double& radius_su
         const uint32_t f = surface_.add_face(corners[0], corners[1], corners[2], tet, check);
         if (f == NO_FACE) return context_.fail_out_of_memory();
         radius_sum += face_radius(delaunay_, surface_, f);
-        if (observer_) {
-            const double reached = double(surface_.used_vertex_count()) / delaunay_.vertex_count();
-            DBRG_PROPAGATE(observer_(observer_user_, surface_, reached));
-        }
+        if (observer_) DBRG_PROPAGATE(observer_(observer_user_, surface_, points_reached(delaunay_, surface_)));
     }
     ++flips_;
     return DBRG_OK;

@@ -270,7 +270,7 @@ dbrg_status RegionGrower::drain_queue() {
         const uint32_t h = c.halfedge;
         DBRG_PROPAGATE(add_face(surface_.target(h), surface_.origin(h), c.apex, c.tet, &check));
         if (++steps % 1024 == 0) {
-            DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, points_reached()));
+            DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, points_reached(delaunay_, surface_)));
         }
     }
     return DBRG_OK;
@@ -462,7 +462,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
 
 // Tells the step observer, if any, that S has changed.
 dbrg_status RegionGrower::report_step() const {
-    return observer_ ? observer_(observer_user_, surface_, points_reached()) : DBRG_OK;
+    return observer_ ? observer_(observer_user_, surface_, points_reached(delaunay_, surface_)) : DBRG_OK;
 }
 
 dbrg_status RegionGrower::regrow_holes() {

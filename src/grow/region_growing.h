@@ -72,8 +72,6 @@ private:
     void release_queues();
     dbrg_status reject(const Candidate& candidate, Verdict verdict);
     dbrg_status report_step() const;
-    // The share of the points S has now (pinch removal may give some back).
-    double points_reached() const { return double(surface_.used_vertex_count()) / delaunay_.vertex_count(); }
     dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed);
     dbrg_status resolve_pinches(Array<uint32_t>& removed);
     dbrg_status remove_islands();

@@ -1,5 +1,6 @@
 // The geometry of a face of the surface S, from the points of the tetrahedralization it was grown over.
-// Recomputed rather than stored: cheaper in memory, and exact copies of what growing computed.
+// Recomputed rather than stored: cheaper in memory, and exact copies of what growing computed. And the
+// share of the points S has reached.
 #pragma once
 
 #include <stdint.h>
@@ -19,6 +20,11 @@ inline Vec3 face_normal(const Tetrahedralization& delaunay, const Surface& surfa
 inline double face_radius(const Tetrahedralization& delaunay, const Surface& surface, uint32_t f) {
     return circumradius(delaunay.point(surface.corner(f, 0)), delaunay.point(surface.corner(f, 1)),
                         delaunay.point(surface.corner(f, 2)));
+}
+
+// The share of the points S has now (pinch removal may give some back): what step observers are told.
+inline double points_reached(const Tetrahedralization& delaunay, const Surface& surface) {
+    return double(surface.used_vertex_count()) / delaunay.vertex_count();
 }
 
 } // namespace dbrg

@@ -25,9 +25,9 @@ public:
     HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
 
     // Fills every hole of at most params.max_hole_edges edges that can be filled validly; leaves the
-    // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles) and flips
-    // the edges growing deferred (RegionGrower::flip_deferred). Fills the hole and handle fields of
-    // context.stats.
+    // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles) and makes
+    // the edge flips growing deferred and those around the new faces (RegionGrower::flip_deferred).
+    // Fills the hole and handle fields of context.stats.
     dbrg_status fill();
 
 private:
