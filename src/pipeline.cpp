@@ -2,6 +2,8 @@
 // holes — and hands the results over in the caller's point indexing.
 #include "pipeline.h"
 
+#include <algorithm>
+
 #include "core/point_input.h"
 #include "core/status.h"
 #include "delaunay/point_conditioning.h"
@@ -143,22 +145,52 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     Tetrahedralization delaunay(context.memory);
     DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
 
-    // Finite tetrahedra are numbered in slot order; infinite and free slots get no number.
+    // Finite tetrahedra are numbered in the order of their canonical corners (counting sort by the first,
+    // then the few that share it by the other three), and written with their corners in that order: the
+    // output is the same whichever slots construction left them in (threads leave them in other slots).
     const uint32_t slots = delaunay.tet_slots();
+    const auto corners = [&](uint32_t t, uint32_t local[4], uint32_t vertex[4]) {
+        delaunay.canonical_corners(t, local);
+        for (uint32_t i = 0; i < 4; ++i) vertex[i] = delaunay.tet_vertex(t, local[i]);
+    };
+    Array<uint32_t> bucket_end(context.memory);  // per smallest corner
+    Array<uint32_t> order(context.memory);
     Array<uint32_t> number(context.memory);
-    if (!number.resize(slots, DBRG_NO_NEIGHBOR)) return context.fail_out_of_memory();
-    uint32_t finite = 0;
-    for (uint32_t t = 0; t < slots; ++t) {
-        if (!delaunay.tet_is_free(t) && delaunay.tet_is_finite(t)) number[t] = finite++;
+    if (!bucket_end.resize(size_t(delaunay.vertex_count()) + 1, 0) || !number.resize(slots, DBRG_NO_NEIGHBOR)) {
+        return context.fail_out_of_memory();
     }
+    uint32_t local[4], vertex[4], finite = 0;
+    for (uint32_t t = 0; t < slots; ++t) {
+        if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
+        corners(t, local, vertex);
+        ++bucket_end[vertex[0] + 1];
+        ++finite;
+    }
+    for (size_t v = 1; v < bucket_end.size(); ++v) bucket_end[v] += bucket_end[v - 1];
+    if (!order.resize(finite)) return context.fail_out_of_memory();
+    for (uint32_t t = 0; t < slots; ++t) {
+        if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
+        corners(t, local, vertex);
+        order[bucket_end[vertex[0]]++] = t;  // bucket_end[v] ends as the end of v's bucket
+    }
+    const auto by_corners = [&](uint32_t s, uint32_t t) {
+        uint32_t vs[4], vt[4];
+        corners(s, local, vs);
+        corners(t, local, vt);
+        return std::lexicographical_compare(vs + 1, vs + 4, vt + 1, vt + 4);
+    };
+    for (size_t v = 0, begin = 0; v < delaunay.vertex_count(); begin = bucket_end[v++]) {
+        std::sort(order.begin() + begin, order.begin() + bucket_end[v], by_corners);
+    }
+    for (uint32_t i = 0; i < finite; ++i) number[order[i]] = i;
     if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {
         return context.fail_out_of_memory();
     }
-    for (uint32_t t = 0; t < slots; ++t) {
-        if (number[t] == DBRG_NO_NEIGHBOR) continue;
-        for (uint32_t i = 0; i < 4; ++i) {
-            result.tets[4 * size_t(number[t]) + i] = conditioned.input_index[delaunay.tet_vertex(t, i)];
-            result.adjacency[4 * size_t(number[t]) + i] = number[delaunay.tet_adjacent(t, i)];
+    for (uint32_t i = 0; i < finite; ++i) {
+        corners(order[i], local, vertex);
+        for (uint32_t k = 0; k < 4; ++k) {
+            result.tets[4 * size_t(i) + k] = conditioned.input_index[vertex[k]];
+            result.adjacency[4 * size_t(i) + k] = number[delaunay.tet_adjacent(order[i], local[k])];
         }
     }
     result.unique_points = conditioned.size();

@@ -13,6 +13,7 @@
 #include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
 #include "delaunay_test_support.h"
+#include "samples/samples.h"
 
 using namespace dbrg;
 using namespace dbrg_test;
@@ -41,9 +42,11 @@ struct Built {
     Tetrahedralization tets;
     dbrg_status status;
 
-    explicit Built(const std::vector<double>& xyz, const dbrg_params& params = test_params())
+    // `hilbert_numbered`: renumber the points along the Hilbert curve first, as the pipeline does.
+    explicit Built(const std::vector<double>& xyz, const dbrg_params& params = test_params(), bool hilbert_numbered = false)
         : context(params), points(context.memory), tets(context.memory) {
         status = condition_points(xyz.data(), xyz.size() / 3, context, points);
+        if (status == DBRG_OK && hilbert_numbered) status = renumber_spatially(points, context);
         if (status == DBRG_OK) status = tets.build(points.coordinates.data(), points.size(), context);
     }
 };
@@ -285,6 +288,45 @@ TEST_CASE("shuffled copies give identical tetrahedra") {
                 same &= first.tets.tet_adjacent(t, k) == second.tets.tet_adjacent(t, k);
             }
         CHECK(same);
+    }
+}
+
+TEST_CASE("threads inserting the last round at once make the tetrahedra of one thread") {
+    // From 32,768 points on the last BRIO round is split among threads. A surface sample in Hilbert
+    // numbering (as the pipeline gives it: the order is streamed), the same with its points shuffled (the
+    // order is an array), points on one sphere (all on the hull, all cospherical), an exact lattice and a
+    // cube's surface lattice (massively degenerate), and a torus, whose long tetrahedra inside the tube
+    // make threads meet and whose growing number of tetrahedra per point fills the store the threads were
+    // given (they stop, it grows, they go on).
+    std::vector<double> shuffled = samples::sample(samples::Shape::bumpy_sphere, 40000);
+    Random r(5);
+    const size_t n = shuffled.size() / 3;
+    for (size_t i = n - 1; i > 0; --i) {
+        const size_t j = r.next() % (i + 1);
+        for (int k = 0; k < 3; ++k) std::swap(shuffled[3 * i + k], shuffled[3 * j + k]);
+    }
+    const std::vector<double> inputs[] = {samples::sample(samples::Shape::bumpy_sphere, 40000), shuffled,
+                                          random_sphere(34000, 3), lattice(33, 0.0, 0), cube_surface_lattice(76),
+                                          samples::sample(samples::Shape::torus, 60000)};
+    for (size_t input = 0; input < std::size(inputs); ++input) {
+        CAPTURE(input);
+        dbrg_params params = test_params();
+        params.threads = 1;
+        Built one(inputs[input], params, input != 1);
+        REQUIRE(one.status == DBRG_OK);
+        const std::vector<Quad> expected = canonical_tets(one.tets);
+        for (uint32_t threads = 2; threads <= (input + 1 == std::size(inputs) ? 3u : 2u); ++threads) {
+            CAPTURE(threads);
+            params.threads = threads;
+            Built several(inputs[input], params, input != 1);
+            REQUIRE(several.status == DBRG_OK);
+            char message[256];
+            const bool valid = several.tets.validate(message, sizeof message);
+            CHECK_MESSAGE(valid, message);
+            CHECK(several.tets.finite_tet_count() == one.tets.finite_tet_count());
+            CHECK(canonical_tets(several.tets) == expected);
+            CHECK(several.tets.counters.calls > 0);
+        }
     }
 }
 

@@ -7,6 +7,10 @@
 // randomized visibility walk.
 #include <math.h>
 #include <string.h>
+
+#include <algorithm>
+#include <atomic>
+#include <optional>
 #if defined(__linux__)
 #include <errno.h>
 #include <sys/mman.h>
@@ -45,6 +49,16 @@ constexpr size_t GROWTH_DIVISOR = 16;
 constexpr double PROJECTION_MARGIN = 1.05;
 // Below this many new store entries per thread, a thread costs more to start than the fill it takes over.
 constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 18;
+// Shared insertion of the last BRIO round: at most this many threads (each needs a mark below 256 and
+// about 300 KB of scratch space), each with room for a cavity of this many tetrahedra and faces (a
+// thousand times the usual), for this many claims at once, taking slots this many at a time, and
+// remembering up to one in DEFERRED_SHARE of its points as given up.
+constexpr uint32_t MAX_INSERTION_THREADS = 8;
+constexpr size_t MAX_SHARED_CAVITY = 1024;
+constexpr size_t MAX_SHARED_FACES = 2048;
+constexpr size_t MAX_SHARED_HELD = 8192;
+constexpr uint32_t CHUNK_SLOTS = 1024;
+constexpr uint32_t DEFERRED_SHARE = 8;
 
 // Face lf of a tetrahedron as three local vertices in the order that makes (face, lf) an even
 // permutation of (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.
@@ -105,6 +119,13 @@ void populate(const Memory& memory, void* data, size_t bytes) {
 #endif
 }
 
+// Slots in the edge table for the faces of `faces` new tetrahedra: a power of two, at most half full.
+size_t edge_table_size(size_t faces) {
+    size_t size = 64;
+    while (size < 3 * faces) size *= 2;
+    return size;
+}
+
 uint32_t hash_edge(uint64_t edge) {
     const uint64_t h = edge * 0x9e3779b97f4a7c15ull;
     return static_cast<uint32_t>(h >> 40);
@@ -112,12 +133,43 @@ uint32_t hash_edge(uint64_t edge) {
 
 } // namespace
 
+// What one thread needs to insert points: where its next walk starts, its random bits and predicate
+// counts, its free slots and the scratch space of one insertion. While several threads insert at once,
+// each also has a mark, the tetrahedra it has claimed with it, the unused slots handed to it and the
+// points it left for later.
+struct Inserter {
+    explicit Inserter(Memory& memory)
+        : cavity(memory), outside(memory), boundary(memory), new_tets(memory), new_slots(memory), edges(memory),
+          filed(memory), held(memory), deferred(memory) {}
+
+    uint32_t hint = 0;  // a tetrahedron made by the last insertion: the next walk starts there
+    uint64_t random = WALK_SEED;
+    PredicateCounters counters;
+    int64_t finite_change = 0;    // finite tetrahedra made less those removed
+    uint32_t free_head = NO_TET;  // free slots, chained through adjacency entry 0
+    uint32_t free_count = 0;
+    uint32_t chunk_next = 0, chunk_end = 0;  // unused slots handed to this thread (shared insertion)
+    uint8_t mark = 0;                        // its mark in the claims (shared insertion)
+    bool left_out = false;                   // the last shared insertion gave its point up
+    uint32_t inserted = 0;                   // points a shared insertion put in
+    bool out_of_slots = false;               // the store is full (shared insertion)
+    const char* failure = nullptr;           // why a shared insertion failed (reported by the calling thread)
+
+    Array<uint32_t> cavity;
+    Array<uint32_t> outside;
+    Array<BoundaryFace> boundary;
+    Array<NewTet> new_tets;
+    Array<uint32_t> new_slots;
+    Array<EdgeEntry> edges;
+    Array<FiledFace> filed;     // the faces one insertion filed in edges
+    Array<uint32_t> held;       // the tetrahedra claimed with `mark`
+    Array<uint32_t> deferred;   // points given up, for the calling thread to insert after the others
+};
+
 class DelaunayBuilder {
 public:
     DelaunayBuilder(Tetrahedralization& out, Context& context)
-        : out_(out), context_(context), memory_(context.memory), pending_(memory_), cavity_(memory_),
-          outside_(memory_), boundary_(memory_), new_tets_(memory_), new_slots_(memory_), edges_(memory_),
-          filed_(memory_) {}
+        : out_(out), context_(context), memory_(context.memory), main_(memory_), pending_(memory_), claims_(memory_) {}
 
     // Inserts the `count` points of `points` in the order `order` gives (the four first affinely
     // independent ones first). Vertex ids are indices into `points`.
@@ -126,25 +178,45 @@ public:
 private:
     dbrg_status start();
     bool next_vertex(uint32_t& v);
-    // Inserts v; `next` is the point inserted after it, or null.
-    dbrg_status insert(uint32_t v, const double* next);
-    dbrg_status locate(const double* p, uint32_t& found);
-    bool in_conflict(const uint32_t* tet, const double* p);
-    dbrg_status take_slot(uint32_t& slot);
+    // Inserts v; `next` is the point inserted after it, or null. Shared: other threads insert at the same
+    // time; where a tetrahedron it needs is claimed by one of them, or its fixed scratch space or slots do
+    // not suffice, it changes nothing and sets `left_out`.
+    template <bool Shared> dbrg_status insert(Inserter& in, uint32_t v, const double* next);
+    template <bool Shared> dbrg_status locate(Inserter& in, const double* p, uint32_t& found);
+    template <bool Shared> dbrg_status give_up(Inserter& in);
+    template <bool Shared> dbrg_status fail_internal(Inserter& in, const char* message);
+    bool in_conflict(Inserter& in, const uint32_t* tet, const double* p);
+    template <bool Shared> dbrg_status take_slot(Inserter& in, uint32_t& slot);
     dbrg_status size_store(size_t slots);
-    dbrg_status link_new_tets();
-    void choose_hint(const double* next);
+    size_t projected_slots() const;
+    template <bool Shared> dbrg_status link_new_tets(Inserter& in);
+    void choose_hint(Inserter& in, const double* next);
+    const double* point(uint32_t v) const { return points_ + 3 * size_t(v); }
+
+    // Shared insertion of the last BRIO round.
+    dbrg_status insert_last_round(uint32_t parts);
+    dbrg_status prepare_inserter(Inserter& in, uint32_t part, uint32_t deferred_room);
+    void insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, uint32_t parts, dbrg_status& status);
+    bool claim(Inserter& in, uint32_t t);
+    void release_claims(Inserter& in);
+    bool room_for(Inserter& in, size_t faces, size_t cavity_size);
+    void hand_back_chunk(Inserter& in);
     void refresh_pointers() {
         vertex_ = out_.vertices_.data();
         adjacency_ = out_.adjacency_.data();
     }
-    const double* point(uint32_t v) const { return points_ + 3 * size_t(v); }
-    uint32_t next_random() {
+    void free_slot(Inserter& in, uint32_t s) {
+        vertex_[4 * size_t(s)] = Tetrahedralization::FREE_MARK;
+        adjacency_[4 * size_t(s)] = in.free_head;
+        in.free_head = s;
+        ++in.free_count;
+    }
+    uint32_t next_random(Inserter& in) {
         // xorshift64: only a few bits per walk step are needed, and it has to be cheap.
-        random_ ^= random_ << 13;
-        random_ ^= random_ >> 7;
-        random_ ^= random_ << 17;
-        return static_cast<uint32_t>(random_ >> 32);
+        in.random ^= in.random << 13;
+        in.random ^= in.random >> 7;
+        in.random ^= in.random << 17;
+        return static_cast<uint32_t>(in.random >> 32);
     }
 
     Tetrahedralization& out_;
@@ -153,51 +225,54 @@ private:
     const double* points_ = nullptr;
     uint32_t* vertex_ = nullptr;     // out_.vertices_.data(), refreshed whenever the store grows
     uint32_t* adjacency_ = nullptr;  // out_.adjacency_.data()
-    uint32_t free_head_ = NO_TET;    // free slots, chained through adjacency entry 0
     uint32_t slot_end_ = 0;          // slots in use or free; the arrays hold more until run() ends
     BrioOrder* order_ = nullptr;     // the insertion order
     uint32_t count_ = 0;             // points to insert
     uint32_t inserted_ = 0;          // points inserted so far
-    uint32_t hint_ = 0;              // a tetrahedron made by the last insertion: the next walk starts there
-    uint64_t random_ = WALK_SEED;
+    Inserter main_;                  // the calling thread's
 
     Array<uint32_t> pending_;  // points the order gave before the first tetrahedron was complete
     size_t pending_next_ = 0;
 
-    // Scratch space of one insertion.
-    Array<uint32_t> cavity_;
-    Array<uint32_t> outside_;
-    Array<BoundaryFace> boundary_;
-    Array<NewTet> new_tets_;
-    Array<uint32_t> new_slots_;
-    Array<EdgeEntry> edges_;
-    Array<FiledFace> filed_;      // the faces one insertion filed in edges_
+    // Shared insertion: per slot, the mark of the thread that claimed it (0: none); the next slot not yet
+    // handed to a thread; a flag that tells the threads to stop.
+    Array<uint8_t> claims_;
+    std::atomic<uint32_t> next_chunk_{0};
+    std::atomic<bool> stop_{false};
 };
 
-dbrg_status DelaunayBuilder::take_slot(uint32_t& slot) {
-    if (free_head_ != NO_TET) {
-        slot = free_head_;
-        free_head_ = adjacency_[4 * size_t(slot)];
+template <bool Shared>
+dbrg_status DelaunayBuilder::take_slot(Inserter& in, uint32_t& slot) {
+    if (in.free_head != NO_TET) {
+        slot = in.free_head;
+        in.free_head = adjacency_[4 * size_t(slot)];
+        --in.free_count;
+    } else if (Shared) {
+        slot = in.chunk_next++;  // room_for made sure there is one
+    } else {
+        const size_t slots = slot_end_;
+        if (slots >= MAX_TET_SLOTS) {
+            return context_.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than %u tetrahedra",
+                                 MAX_TET_SLOTS);
+        }
+        if (4 * slots == out_.vertices_.size()) {
+            const size_t grown = slots + slots / GROWTH_DIVISOR + 64;
+            DBRG_PROPAGATE(size_store(std::min<size_t>(std::max(grown, projected_slots()), MAX_TET_SLOTS)));
+        }
+        slot = slot_end_++;
         return DBRG_OK;
     }
-    const size_t slots = slot_end_;
-    if (slots >= MAX_TET_SLOTS) {
-        return context_.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than %u tetrahedra",
-                             MAX_TET_SLOTS);
-    }
-    if (4 * slots == out_.vertices_.size()) {
-        size_t grown = slots + slots / GROWTH_DIVISOR + 64;
-        if (inserted_ > 0 && inserted_ < count_) {
-            // Clamped while still a double: the cast of a value beyond size_t's range is undefined.
-            double projected = slots + double(slots) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN + 64;
-            projected = projected < MAX_TET_SLOTS ? projected : MAX_TET_SLOTS;
-            grown = static_cast<size_t>(projected) > grown ? static_cast<size_t>(projected) : grown;
-        }
-        grown = grown > MAX_TET_SLOTS ? MAX_TET_SLOTS : grown;
-        DBRG_PROPAGATE(size_store(grown));
-    }
-    slot = slot_end_++;
-    return DBRG_OK;
+    return Shared && !claim(in, slot) ? fail_internal<Shared>(in, "a free slot was claimed (a bug in dbrg)") : DBRG_OK;
+}
+
+// The slots the tetrahedralization will need: the tetrahedra per point inserted so far (BRIO spreads
+// every round over the whole set, so that ratio hardly changes as points come in) for all the points,
+// with a margin on the part still to come.
+size_t DelaunayBuilder::projected_slots() const {
+    if (inserted_ == 0 || inserted_ >= count_) return slot_end_;
+    // Clamped while still a double: the cast of a value beyond size_t's range is undefined.
+    const double projected = slot_end_ + double(slot_end_) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN + 64;
+    return projected < MAX_TET_SLOTS ? static_cast<size_t>(projected) : MAX_TET_SLOTS;
 }
 
 dbrg_status DelaunayBuilder::size_store(size_t slots) {
@@ -225,8 +300,8 @@ dbrg_status DelaunayBuilder::size_store(size_t slots) {
     return DBRG_OK;
 }
 
-bool DelaunayBuilder::in_conflict(const uint32_t* tet, const double* p) {
-    PredicateCounters& counters = out_.counters;
+bool DelaunayBuilder::in_conflict(Inserter& in, const uint32_t* tet, const double* p) {
+    PredicateCounters& counters = in.counters;
     const double* a = point(tet[0] & VERTEX_ID_MASK);
     const double* b = point(tet[1] & VERTEX_ID_MASK);
     const double* c = point(tet[2]);
@@ -240,18 +315,22 @@ bool DelaunayBuilder::in_conflict(const uint32_t* tet, const double* p) {
     return insphere_sos(a, b, c, point(tet[3]), p, counters) > 0;
 }
 
-dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
-    PredicateCounters& counters = out_.counters;
-    uint32_t t = hint_;
-    if (vertex_[4 * size_t(t) + 3] == INFINITE_VERTEX) t = adjacency_[4 * size_t(t) + 3] >> 2;
+template <bool Shared>
+dbrg_status DelaunayBuilder::locate(Inserter& in, const double* p, uint32_t& found) {
+    found = NO_TET;
+    uint32_t t = in.hint;  // claimed when shared
+    if (vertex_[4 * size_t(t) + 3] == INFINITE_VERTEX) {
+        t = adjacency_[4 * size_t(t) + 3] >> 2;
+        if (Shared && !claim(in, t)) return give_up<Shared>(in);
+    }
     uint32_t entry = NO_FACE;  // the face we came in by: p is known to be on its inner side
     // A visibility walk in a Delaunay tetrahedralization never cycles (Edelsbrunner's acyclicity of
     // the in-front relation); the step limit only turns a bug into an error instead of a hang.
-    const size_t step_limit = size_t(slot_end_) + 1000;
+    const size_t step_limit = out_.vertices_.size() / 4 + 1000;
     for (size_t step = 0; step < step_limit; ++step) {
         const uint32_t* tv = vertex_ + 4 * size_t(t);
         const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
-        const uint32_t first = next_random() & 3;
+        const uint32_t first = next_random(in) & 3;
         uint32_t exit = NO_FACE;
         for (uint32_t k = 0; k < 4; ++k) {
             const uint32_t lf = (first + k) & 3;
@@ -259,7 +338,7 @@ dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
             // p replacing vertex lf: negative when p is on the far side of face lf.
             const double* kept = q[lf];
             q[lf] = p;
-            const int side = orient3d(q[0], q[1], q[2], q[3], counters);
+            const int side = orient3d(q[0], q[1], q[2], q[3], in.counters);
             q[lf] = kept;
             if (side < 0) {
                 exit = lf;
@@ -271,6 +350,11 @@ dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
             return DBRG_OK;
         }
         const uint32_t across = adjacency_[4 * size_t(t) + exit];
+        if (Shared && !claim(in, across >> 2)) {
+            // The next walk starts where this one got to, not from behind it again.
+            in.hint = t;
+            return give_up<Shared>(in);
+        }
         t = across >> 2;
         entry = across & 3;
         if (vertex_[4 * size_t(t) + 3] == INFINITE_VERTEX) {
@@ -278,7 +362,29 @@ dbrg_status DelaunayBuilder::locate(const double* p, uint32_t& found) {
             return DBRG_OK;
         }
     }
-    return context_.fail(DBRG_ERR_INTERNAL, "point location did not terminate (a bug in dbrg)");
+    return fail_internal<Shared>(in, "point location did not terminate (a bug in dbrg)");
+}
+
+// Sequential insertion ran out of memory; a shared one leaves the point for later and every tetrahedron
+// as it was.
+template <bool Shared>
+dbrg_status DelaunayBuilder::give_up(Inserter& in) {
+    if (!Shared) return context_.fail_out_of_memory();
+    for (uint32_t c : in.cavity) vertex_[4 * size_t(c)] &= VERTEX_ID_MASK;
+    for (uint32_t o : in.outside) vertex_[4 * size_t(o) + 1] &= VERTEX_ID_MASK;
+    in.cavity.clear();
+    in.outside.clear();
+    in.left_out = true;
+    release_claims(in);
+    return DBRG_OK;
+}
+
+// Only the calling thread may write the context's message: a shared insertion keeps its own.
+template <bool Shared>
+dbrg_status DelaunayBuilder::fail_internal(Inserter& in, const char* message) {
+    if (!Shared) return context_.fail(DBRG_ERR_INTERNAL, "%s", message);
+    in.failure = message;
+    return DBRG_ERR_INTERNAL;
 }
 
 dbrg_status DelaunayBuilder::start() {
@@ -342,7 +448,7 @@ dbrg_status DelaunayBuilder::start() {
         }
     }
     out_.finite_tets_ = 1;
-    hint_ = 0;
+    main_.hint = 0;
     return DBRG_OK;
 }
 
@@ -354,99 +460,111 @@ bool DelaunayBuilder::next_vertex(uint32_t& v) {
     return order_->next(v);
 }
 
-dbrg_status DelaunayBuilder::insert(uint32_t v, const double* next) {
+template <bool Shared>
+dbrg_status DelaunayBuilder::insert(Inserter& in, uint32_t v, const double* next) {
     const double* p = point(v);
+    in.cavity.clear();
+    in.outside.clear();
+    in.boundary.clear();
+    in.left_out = false;
     uint32_t first;
-    DBRG_PROPAGATE(locate(p, first));
+    DBRG_PROPAGATE(locate<Shared>(in, p, first));
+    if (first == NO_TET) return DBRG_OK;  // given up
+    // Giving up from here, the next walk starts where this one ended.
+    const auto leave = [&]() {
+        in.hint = first;
+        return give_up<Shared>(in);
+    };
 
-    // The cavity: breadth-first over the tetrahedra in conflict, which are connected.
-    cavity_.clear();
-    outside_.clear();
-    boundary_.clear();
-    vertex_[4 * size_t(first)] |= IN_CAVITY_BIT;
-    if (!cavity_.push_back(first)) return context_.fail_out_of_memory();
+    // The cavity: breadth-first over the tetrahedra in conflict, which are connected. Shared, each
+    // tetrahedron is claimed before it is read; when one is another thread's, the point is given up.
     // Memory latency, not arithmetic, bounds this loop: the neighbours' records are requested one
     // cavity member ahead of their tests, a member's adjacency as soon as it joins, and an outside
     // neighbour's adjacency (written when the new tetrahedra are glued on) as soon as it is reached.
+    // Within a shared insertion a list that reaches its fixed capacity gives the point up too (push_back
+    // would allocate).
+    const auto append = [](auto& list, const auto& item) {
+        return Shared && list.size() == list.capacity() ? false : list.push_back(item);
+    };
+    if (!append(in.cavity, first)) return leave();
+    vertex_[4 * size_t(first)] |= IN_CAVITY_BIT;
     size_t requested = 0;  // cavity members whose neighbours' records have been requested
-    for (size_t i = 0; i < cavity_.size(); ++i) {
-        for (; requested < cavity_.size() && requested <= i + 1; ++requested) {
-            const uint32_t* adjacent = adjacency_ + 4 * size_t(cavity_[requested]);
+    for (size_t i = 0; i < in.cavity.size(); ++i) {
+        for (; requested < in.cavity.size() && requested <= i + 1; ++requested) {
+            const uint32_t* adjacent = adjacency_ + 4 * size_t(in.cavity[requested]);
             for (uint32_t lf = 0; lf < 4; ++lf) prefetch(vertex_ + 4 * size_t(adjacent[lf] >> 2));
         }
-        const uint32_t c = cavity_[i];
+        const uint32_t c = in.cavity[i];
         for (uint32_t lf = 0; lf < 4; ++lf) {
             const uint32_t n = adjacency_[4 * size_t(c) + lf] >> 2;
+            if (Shared && !claim(in, n)) return leave();
             uint32_t* nv = vertex_ + 4 * size_t(n);
             if (nv[0] & IN_CAVITY_BIT) continue;
             if (!(nv[1] & OUTSIDE_BIT)) {
                 prefetch(adjacency_ + 4 * size_t(n));
-                if (in_conflict(nv, p)) {
+                if (in_conflict(in, nv, p)) {
+                    if (!append(in.cavity, n)) return leave();
                     nv[0] |= IN_CAVITY_BIT;
-                    if (!cavity_.push_back(n)) return context_.fail_out_of_memory();
                     continue;
                 }
+                if (!append(in.outside, n)) return leave();
                 nv[1] |= OUTSIDE_BIT;
-                if (!outside_.push_back(n)) return context_.fail_out_of_memory();
             }
-            if (!boundary_.push_back(BoundaryFace{c, lf})) return context_.fail_out_of_memory();
+            if (!append(in.boundary, BoundaryFace{c, lf})) return leave();
         }
     }
 
     // Each boundary face makes a new tetrahedron: the cavity tetrahedron behind it with the vertex
     // opposite the face replaced by v. v is on the same side of the face as that vertex (the cavity
     // is star-shaped from v), so the orientation carries over, and so does the infinite vertex's slot.
-    const size_t face_count = boundary_.size();
-    const size_t cavity_size = cavity_.size();
-    if (!new_tets_.resize(face_count) || !new_slots_.resize(face_count)) return context_.fail_out_of_memory();
+    const size_t face_count = in.boundary.size();
+    const size_t cavity_size = in.cavity.size();
+    if (Shared && !room_for(in, face_count, cavity_size)) return leave();
+    if (!in.new_tets.resize(face_count) || !in.new_slots.resize(face_count)) return context_.fail_out_of_memory();
     for (size_t i = 0; i < face_count; ++i) {
-        const BoundaryFace f = boundary_[i];
-        NewTet& made = new_tets_[i];
+        const BoundaryFace f = in.boundary[i];
+        NewTet& made = in.new_tets[i];
         memcpy(made.vertex, vertex_ + 4 * size_t(f.tet), sizeof made.vertex);
         made.vertex[0] &= VERTEX_ID_MASK;
         made.vertex[f.face] = v;
         made.outer = adjacency_[4 * size_t(f.tet) + f.face];
         made.face = f.face;
     }
-    uint32_t finite_removed = 0;
-    for (size_t i = 0; i < cavity_size; ++i) finite_removed += vertex_[4 * size_t(cavity_[i]) + 3] != INFINITE_VERTEX;
+    int64_t finite_change = 0;
+    for (size_t i = 0; i < cavity_size; ++i) finite_change -= vertex_[4 * size_t(in.cavity[i]) + 3] != INFINITE_VERTEX;
     for (size_t i = 0; i < face_count; ++i) {
         if (i < cavity_size) {
-            new_slots_[i] = cavity_[i];
+            in.new_slots[i] = in.cavity[i];
         } else {
-            DBRG_PROPAGATE(take_slot(new_slots_[i]));
+            DBRG_PROPAGATE(take_slot<Shared>(in, in.new_slots[i]));
         }
     }
-    for (size_t i = face_count; i < cavity_size; ++i) {
-        const uint32_t s = cavity_[i];
-        vertex_[4 * size_t(s)] = Tetrahedralization::FREE_MARK;
-        adjacency_[4 * size_t(s)] = free_head_;
-        free_head_ = s;
-    }
-    uint32_t finite_added = 0;
-    hint_ = new_slots_[0];
+    for (size_t i = face_count; i < cavity_size; ++i) free_slot(in, in.cavity[i]);
+    in.hint = in.new_slots[0];
     for (size_t i = 0; i < face_count; ++i) {
-        const NewTet& made = new_tets_[i];
-        const uint32_t s = new_slots_[i];
+        const NewTet& made = in.new_tets[i];
+        const uint32_t s = in.new_slots[i];
         memcpy(vertex_ + 4 * size_t(s), made.vertex, sizeof made.vertex);
         adjacency_[4 * size_t(s) + made.face] = made.outer;
         adjacency_[4 * size_t(made.outer >> 2) + (made.outer & 3)] = s << 2 | made.face;
-        finite_added += made.vertex[3] != INFINITE_VERTEX;
+        finite_change += made.vertex[3] != INFINITE_VERTEX;
     }
-    choose_hint(next);
-    out_.finite_tets_ += finite_added - finite_removed;
-    for (size_t i = 0; i < outside_.size(); ++i) vertex_[4 * size_t(outside_[i]) + 1] &= VERTEX_ID_MASK;
-    return link_new_tets();
+    choose_hint(in, next);
+    in.finite_change += finite_change;
+    for (uint32_t o : in.outside) vertex_[4 * size_t(o) + 1] &= VERTEX_ID_MASK;
+    DBRG_PROPAGATE(link_new_tets<Shared>(in));
+    if (Shared) release_claims(in);
+    return DBRG_OK;
 }
 
-void DelaunayBuilder::choose_hint(const double* q) {
+void DelaunayBuilder::choose_hint(Inserter& in, const double* q) {
     // Any start is correct, but on surface samples the tetrahedra around v are long needles, and a walk
     // from an arbitrary one of them wanders; the one whose centroid is nearest to the next point in
     // insertion order cuts the walk to a fraction. Plain floating point: only speed depends on it.
     if (!q) return;
     double best = HUGE_VAL;
-    for (size_t i = 0; i < new_tets_.size(); ++i) {
-        const NewTet& made = new_tets_[i];
+    for (size_t i = 0; i < in.new_tets.size(); ++i) {
+        const NewTet& made = in.new_tets[i];
         if (made.vertex[3] == INFINITE_VERTEX) continue;
         double d2 = 0;
         for (int k = 0; k < 3; ++k) {
@@ -456,35 +574,35 @@ void DelaunayBuilder::choose_hint(const double* q) {
         }
         if (d2 < best) {
             best = d2;
-            hint_ = new_slots_[i];
+            in.hint = in.new_slots[i];
         }
     }
 }
 
-dbrg_status DelaunayBuilder::link_new_tets() {
+template <bool Shared>
+dbrg_status DelaunayBuilder::link_new_tets(Inserter& in) {
     // The three faces of a new tetrahedron that contain v meet the other new tetrahedra along the edges
     // of the cavity boundary. Seen from the new tetrahedron, with v first, such a face runs v -> x -> y;
     // the tetrahedron on the other side sees the same face reversed, v -> y -> x. Of each such pair, the
     // face with x > y is filed under (x, y) and the one with x < y looks up (y, x) and links both: half
     // the table work of filing and looking up every face. The faces are first sorted into the two kinds
-    // without a branch (each is written at both ends of filed_, and one end advances), so that the loops
+    // without a branch (each is written at both ends of filed, and one end advances), so that the loops
     // that follow have no unpredictable found/not-found or filed/looked-up branch.
-    const size_t face_count = new_tets_.size();
-    size_t capacity = 64;
-    while (capacity < 3 * face_count) capacity *= 2;
-    if (edges_.size() < capacity) {
-        if (!edges_.resize(capacity)) return context_.fail_out_of_memory();
-        for (EdgeEntry& e : edges_) e.edge = EMPTY_EDGE;
+    const size_t face_count = in.new_tets.size();
+    const size_t table_size = edge_table_size(face_count);
+    if (in.edges.size() < table_size) {  // never when shared: room_for checked it
+        if (!in.edges.resize(table_size)) return context_.fail_out_of_memory();
+        for (EdgeEntry& e : in.edges) e.edge = EMPTY_EDGE;
     }
     const size_t total = 3 * face_count;
-    if (!filed_.resize(total)) return context_.fail_out_of_memory();
-    const uint32_t mask = static_cast<uint32_t>(edges_.size() - 1);
-    EdgeEntry* table = edges_.data();
-    FiledFace* filed = filed_.data();
+    if (!in.filed.resize(total)) return context_.fail_out_of_memory();
+    const uint32_t mask = static_cast<uint32_t>(in.edges.size() - 1);
+    EdgeEntry* table = in.edges.data();
+    FiledFace* filed = in.filed.data();
     size_t to_file = 0, to_look_up = 0;  // filed[0, to_file) are filed, filed[total - to_look_up, total) look up
     for (size_t i = 0; i < face_count; ++i) {
-        const uint32_t s = new_slots_[i];
-        const NewTet& made = new_tets_[i];
+        const uint32_t s = in.new_slots[i];
+        const NewTet& made = in.new_tets[i];
         for (uint32_t g = 0; g < 4; ++g) {
             if (g == made.face) continue;
             const uint32_t x = made.vertex[DIRECTED_EDGE[made.face][g][0]];
@@ -517,7 +635,7 @@ dbrg_status DelaunayBuilder::link_new_tets() {
         adjacency_[table[k].link] = filed[j].link;
     }
     for (size_t j = 0; j < to_file; ++j) table[filed[j].entry].edge = EMPTY_EDGE;
-    if (!complete) return context_.fail(DBRG_ERR_INTERNAL, "the cavity boundary is not a closed surface (a bug in dbrg)");
+    if (!complete) return fail_internal<Shared>(in, "the cavity boundary is not a closed surface (a bug in dbrg)");
     return DBRG_OK;
 }
 
@@ -527,19 +645,225 @@ dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_
     count_ = n;
     DBRG_PROPAGATE(start());
     inserted_ = 4;
+    const uint32_t parts = std::min(part_count(context_.params.threads, n, MIN_POINTS_PER_THREAD), MAX_INSERTION_THREADS);
     uint32_t v = 0, next = 0;
     bool more = next_vertex(next);
     while (more) {
         v = next;
         more = next_vertex(next);
         if (inserted_ % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(inserted_) / n));
-        DBRG_PROPAGATE(insert(v, more ? point(next) : nullptr));
+        DBRG_PROPAGATE(insert<false>(main_, v, more ? point(next) : nullptr));
         ++inserted_;
+        if (more && parts > 1 && pending_next_ == pending_.size() && order.in_last_round()) {
+            // What is still to come is the last round (three quarters of the points): `next`, then the rest
+            // split among the threads.
+            DBRG_PROPAGATE(insert<false>(main_, next, nullptr));
+            ++inserted_;
+            DBRG_PROPAGATE(insert_last_round(parts));
+            more = false;
+        }
     }
     pending_.release();
+    out_.finite_tets_ = static_cast<uint32_t>(int64_t(out_.finite_tets_) + main_.finite_change);
+    out_.counters.calls += main_.counters.calls;
+    out_.counters.filter_failures += main_.counters.filter_failures;
+    out_.counters.perturbations += main_.counters.perturbations;
     out_.vertices_.shrink(4 * size_t(slot_end_));
     out_.adjacency_.shrink(4 * size_t(slot_end_));
     return context_.report(DBRG_STAGE_DELAUNAY, 1.0);
+}
+
+// The last BRIO round, split into consecutive stretches of the order (so into separate regions of
+// space), one per thread, inserted at once. Each thread claims a tetrahedron (an atomic mark per slot)
+// before it reads it, and keeps its claims until its point is in; a cavity's tetrahedra and all their
+// neighbours are claimed before anything changes, so no thread ever reads a tetrahedron another is
+// rewriting. Where another thread has one, the point is given up, and the calling thread inserts it
+// afterwards. The tetrahedralization of a point set does not depend on the insertion order, so the
+// tetrahedra are the same as with one thread (their slots differ). Threads take new slots in chunks
+// from a store sized beforehand and never allocate: what needs more room than their fixed scratch space
+// is given up too. A thread that finds the store full stops; the store grows and they go on.
+dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
+    std::optional<Inserter> others[MAX_INSERTION_THREADS];
+    Inserter* inserters[MAX_INSERTION_THREADS] = {&main_};
+    BrioOrder::Slice slices[MAX_INSERTION_THREADS];
+    dbrg_status statuses[MAX_INSERTION_THREADS];
+    for (uint32_t part = 0; part < parts; ++part) {
+        if (part > 0) inserters[part] = &others[part].emplace(memory_);
+        slices[part] = order_->last_round_slice(part, parts);
+        DBRG_PROPAGATE(prepare_inserter(*inserters[part], part, slices[part].span() / DEFERRED_SHARE + 64));
+        // The others start from a tetrahedron around their first point, found by the calling thread.
+        BrioOrder::Slice peek = slices[part];
+        uint32_t first;
+        if (part > 0 && peek.next(first)) DBRG_PROPAGATE(locate<false>(main_, point(first), inserters[part]->hint));
+        inserters[part]->random ^= part;  // other walks, the same result
+    }
+    bool store_full = true;
+    for (uint32_t phase = 0; store_full; ++phase) {
+        const size_t slots = std::max(projected_slots(), size_t(slot_end_) + size_t(CHUNK_SLOTS) * parts);
+        if (4 * slots > out_.vertices_.size()) DBRG_PROPAGATE(size_store(std::min<size_t>(slots, MAX_TET_SLOTS)));
+        const uint32_t capacity = static_cast<uint32_t>(out_.vertices_.size() / 4);
+        claims_.clear();
+        if (!claims_.resize(capacity, 0)) return context_.fail_out_of_memory();
+        next_chunk_.store(slot_end_, std::memory_order_relaxed);
+        stop_.store(false, std::memory_order_relaxed);
+        bool active[MAX_INSERTION_THREADS] = {};
+        for (uint32_t part = 0; part < parts; ++part) {
+            Inserter& in = *inserters[part];
+            statuses[part] = DBRG_OK;
+            in.out_of_slots = false;
+            in.held.clear();
+            // Two parts that would start from the same tetrahedron: the later one's points wait.
+            if (slices[part].span() == 0 || in.deferred.size() == in.deferred.capacity() || claims_[in.hint] != 0) continue;
+            claims_[in.hint] = in.mark;
+            in.held.push_back(in.hint);  // within the capacity prepare_inserter reserved
+            active[part] = true;
+        }
+        run_parts(parts, [&](uint32_t part) {
+            if (active[part]) insert_slice(*inserters[part], slices[part], part, parts, statuses[part]);
+        });
+        // The calling thread alone again.
+        slot_end_ = std::min(next_chunk_.load(std::memory_order_relaxed), capacity);
+        store_full = false;
+        uint32_t inserted = 0;
+        for (uint32_t part = 0; part < parts; ++part) {
+            Inserter& in = *inserters[part];
+            if (statuses[part] != DBRG_OK) {
+                return in.failure ? context_.fail(statuses[part], "%s", in.failure) : statuses[part];
+            }
+            hand_back_chunk(in);
+            inserted += in.inserted;
+            in.inserted = 0;
+            store_full = store_full || in.out_of_slots;
+        }
+        inserted_ += inserted;
+        store_full = store_full && inserted > 0;
+    }
+    claims_.release();
+    for (uint32_t part = 1; part < parts; ++part) {
+        Inserter& in = *inserters[part];
+        while (in.free_head != NO_TET) {
+            const uint32_t s = in.free_head;
+            in.free_head = adjacency_[4 * size_t(s)];
+            free_slot(main_, s);
+        }
+        main_.finite_change += in.finite_change;
+        main_.counters.calls += in.counters.calls;
+        main_.counters.filter_failures += in.counters.filter_failures;
+        main_.counters.perturbations += in.counters.perturbations;
+    }
+    // What the threads left: the points they gave up, and the rest of a stretch they stopped in.
+    for (uint32_t part = 0; part < parts; ++part) {
+        for (uint32_t v : inserters[part]->deferred) {
+            DBRG_PROPAGATE(insert<false>(main_, v, nullptr));
+            ++inserted_;
+        }
+        uint32_t v;
+        while (slices[part].next(v)) {
+            DBRG_PROPAGATE(insert<false>(main_, v, nullptr));
+            ++inserted_;
+        }
+    }
+    return DBRG_OK;
+}
+
+dbrg_status DelaunayBuilder::prepare_inserter(Inserter& in, uint32_t part, uint32_t deferred_room) {
+    in.mark = static_cast<uint8_t>(part + 1);
+    in.held.clear();
+    in.deferred.clear();
+    const bool room = in.cavity.reserve(MAX_SHARED_CAVITY) && in.outside.reserve(MAX_SHARED_CAVITY) &&
+                      in.boundary.reserve(MAX_SHARED_FACES) && in.new_tets.reserve(MAX_SHARED_FACES) &&
+                      in.new_slots.reserve(MAX_SHARED_FACES) && in.filed.reserve(3 * MAX_SHARED_FACES) &&
+                      in.held.reserve(MAX_SHARED_HELD) && in.deferred.reserve(deferred_room);
+    if (!room) return context_.fail_out_of_memory();
+    const size_t table_size = edge_table_size(MAX_SHARED_FACES);
+    if (in.edges.size() < table_size) {
+        if (!in.edges.resize(table_size)) return context_.fail_out_of_memory();
+        for (EdgeEntry& e : in.edges) e.edge = EMPTY_EDGE;
+    }
+    return DBRG_OK;
+}
+
+// One thread's stretch. Points it gives up are listed for the calling thread; once that list is full,
+// or the store is, the thread stops and leaves the rest of its stretch in `slice`. The calling thread's
+// part also reports progress (estimated from its own count) and stops every part when the caller cancels.
+void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, uint32_t parts,
+                                   dbrg_status& status) {
+    uint32_t next_at = slice.position(), next;
+    bool more = slice.next(next);
+    while (more && !stop_.load(std::memory_order_relaxed)) {
+        const uint32_t v = next, v_at = next_at;
+        next_at = slice.position();
+        more = slice.next(next);
+        status = insert<true>(in, v, more ? point(next) : nullptr);
+        if (status != DBRG_OK) {
+            stop_.store(true, std::memory_order_relaxed);
+            return;
+        }
+        if (!in.left_out) {
+            ++in.inserted;
+        } else if (!in.out_of_slots && in.deferred.size() < in.deferred.capacity()) {
+            in.deferred.push_back(v);
+        } else {
+            slice.rewind(v_at);
+            return;
+        }
+        if (part == 0 && in.inserted % PROGRESS_INTERVAL == 0) {
+            status = context_.report(DBRG_STAGE_DELAUNAY, double(inserted_ + parts * in.inserted) / count_);
+            if (status != DBRG_OK) {
+                stop_.store(true, std::memory_order_relaxed);
+                return;
+            }
+        }
+    }
+    if (more) slice.rewind(next_at);
+}
+
+bool DelaunayBuilder::claim(Inserter& in, uint32_t t) {
+    uint8_t* mark = claims_.data() + t;
+    if (__atomic_load_n(mark, __ATOMIC_RELAXED) == in.mark) return true;
+    if (in.held.size() == in.held.capacity()) return false;
+    uint8_t unclaimed = 0;
+    if (!__atomic_compare_exchange_n(mark, &unclaimed, in.mark, false, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED)) return false;
+    in.held.push_back(t);
+    return true;
+}
+
+// Lets go of every claim but the hint's, which the next walk starts from.
+void DelaunayBuilder::release_claims(Inserter& in) {
+    for (uint32_t t : in.held) {
+        if (t != in.hint) __atomic_store_n(claims_.data() + t, uint8_t(0), __ATOMIC_RELEASE);
+    }
+    in.held.clear();
+    in.held.push_back(in.hint);
+}
+
+// Whether a shared insertion that replaces `cavity_size` tetrahedra by `faces` new ones fits in the
+// thread's scratch space and slots; takes another chunk of the store if it needs one.
+bool DelaunayBuilder::room_for(Inserter& in, size_t faces, size_t cavity_size) {
+    if (faces > in.new_tets.capacity() || faces > in.new_slots.capacity() || 3 * faces > in.filed.capacity() ||
+        edge_table_size(faces) > in.edges.size()) {
+        return false;
+    }
+    const size_t needed = faces > cavity_size ? faces - cavity_size : 0;
+    if (in.held.size() + needed > in.held.capacity()) return false;
+    const uint32_t capacity = static_cast<uint32_t>(claims_.size());
+    while (in.free_count + (in.chunk_end - in.chunk_next) < needed) {
+        // Checked before adding, so that threads out of room cannot wrap the counter around.
+        in.out_of_slots = next_chunk_.load(std::memory_order_relaxed) >= capacity;
+        if (in.out_of_slots) return false;
+        const uint32_t begin = next_chunk_.fetch_add(CHUNK_SLOTS, std::memory_order_relaxed);
+        in.out_of_slots = begin >= capacity;
+        if (in.out_of_slots) return false;
+        hand_back_chunk(in);
+        in.chunk_next = begin;
+        in.chunk_end = std::min(begin + CHUNK_SLOTS, capacity);
+    }
+    return true;
+}
+
+// The unused rest of the thread's chunk goes onto its free list.
+void DelaunayBuilder::hand_back_chunk(Inserter& in) {
+    while (in.chunk_next < in.chunk_end) free_slot(in, in.chunk_next++);
 }
 
 dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Context& context) {

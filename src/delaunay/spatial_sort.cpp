@@ -149,9 +149,24 @@ dbrg_status BrioOrder::prepare(const double* points, uint32_t count, Context& co
     round_ = 0;
     rounds_ = round_count(count);
     streamed_ = in_hilbert_order(points, count, context.params.threads);
-    if (!streamed_) return brio_hilbert_order(points, count, context, order_);
+    if (!streamed_) {
+        last_round_begin_ = 0;
+        for (uint32_t i = 0; i < count; ++i) last_round_begin_ += brio_round(i) != rounds_ - 1;
+        return brio_hilbert_order(points, count, context, order_);
+    }
     DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.0));
     return context.report(DBRG_STAGE_SORT, 1.0);
+}
+
+BrioOrder::Slice BrioOrder::last_round_slice(uint32_t part, uint32_t parts) const {
+    // Streamed, the last round's points are those of its round among the indices from position_ on.
+    const uint32_t end = streamed_ ? count_ : static_cast<uint32_t>(order_.size());
+    Slice slice;
+    slice.array_ = streamed_ ? nullptr : order_.data();
+    slice.rounds_ = rounds_;
+    slice.position_ = position_ + static_cast<uint32_t>(part_begin(end - position_, parts, part));
+    slice.end_ = position_ + static_cast<uint32_t>(part_begin(end - position_, parts, part + 1));
+    return slice;
 }
 
 bool in_hilbert_order(const double* points, uint32_t count, uint32_t threads) {

@@ -56,6 +56,41 @@ public:
         }
     }
 
+    // Whether the points still to come are all of the last round.
+    bool in_last_round() const { return streamed_ ? round_ == rounds_ - 1 : position_ >= last_round_begin_; }
+
+    // Share `part` of `parts` of the points still to come, once in_last_round(): consecutive stretches of
+    // the order, for threads that insert them at once (the order itself is then done with).
+    class Slice {
+    public:
+        bool next(uint32_t& v) {
+            while (position_ < end_) {
+                const uint32_t i = position_++;
+                if (array_) {
+                    v = array_[i];
+                    return true;
+                }
+                if (round_of(i, rounds_) == rounds_ - 1) {
+                    v = i;
+                    return true;
+                }
+            }
+            return false;
+        }
+        // How many positions of the order the slice spans: at least the points it gives.
+        uint32_t span() const { return end_ - position_; }
+        // Where it is, and going back there: next() gives the same points again from there.
+        uint32_t position() const { return position_; }
+        void rewind(uint32_t position) { position_ = position; }
+
+    private:
+        friend class BrioOrder;
+        const uint32_t* array_ = nullptr;  // null when streamed: positions are point indices
+        uint32_t position_ = 0, end_ = 0;
+        int rounds_ = 1;
+    };
+    Slice last_round_slice(uint32_t part, uint32_t parts) const;
+
     // Gives the array's memory back.
     void release() { order_.release(); }
 
@@ -73,6 +108,7 @@ private:
     bool streamed_ = false;
     uint32_t count_ = 0;
     uint32_t position_ = 0;
+    uint32_t last_round_begin_ = 0;  // with an array: where the last round starts in it
     int rounds_ = 1;
     int round_ = 0;
 };

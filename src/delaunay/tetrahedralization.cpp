@@ -70,6 +70,21 @@ uint32_t Tetrahedralization::tet_local_index(uint32_t t, uint32_t v) const {
     return 4;
 }
 
+void Tetrahedralization::canonical_corners(uint32_t t, uint32_t local[4]) const {
+    // The double transposition that brings corner m to the front, then a 3-cycle of the other three.
+    static constexpr uint32_t TO_FRONT[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+    const uint32_t* v = vertices_.data() + 4 * size_t(t);
+    uint32_t m = 0;
+    for (uint32_t i = 1; i < 4; ++i) m = v[i] < v[m] ? i : m;
+    const uint32_t* p = TO_FRONT[m];
+    uint32_t k = 1;
+    for (uint32_t i = 2; i < 4; ++i) k = v[p[i]] < v[p[k]] ? i : k;
+    local[0] = p[0];
+    local[1] = p[k];
+    local[2] = p[1 + k % 3];
+    local[3] = p[1 + (k + 1) % 3];
+}
+
 bool Tetrahedralization::tets_around_vertex(uint32_t v, Array<uint32_t>& tets) const {
     // Breadth-first over the tetrahedra containing v: the neighbours across the three faces through v.
     tets.clear();

@@ -29,8 +29,10 @@ public:
     // DBRG_ERR_TOO_FEW_POINTS, DBRG_ERR_TOO_MANY_POINTS or DBRG_ERR_DEGENERATE_INPUT (with the message
     // set on the context). On failure the object is left empty. Writes context.stats.seconds_sort,
     // seconds_delaunay (insertion only) and tetrahedra, and adds `counters` to the predicate_* fields.
-    // The tetrahedra are a function of the coordinates only: the same point array in any memory
-    // gives the same slots in the same order. The points are read in place, so numbering them along a
+    // The tetrahedra are a function of the coordinates only; on one thread (context.params.threads 1, or
+    // a small input) the same point array in any memory also gives the same slots in the same order,
+    // while threads inserting at once leave them in other slots (canonical_corners and the pipeline's
+    // output order do not depend on slots). The points are read in place, so numbering them along a
     // space-filling curve first (renumber_spatially, as the pipeline does) keeps neighbours close in memory.
     dbrg_status build(const double* points, uint32_t count, Context& context);
 
@@ -53,6 +55,10 @@ public:
     uint32_t tet_adjacent_face(uint32_t t, uint32_t lf) const { return adjacency_[4 * size_t(t) + lf] & 3u; }
     // The local index of vertex v in t, or 4 when t does not contain v.
     uint32_t tet_local_index(uint32_t t, uint32_t v) const;
+    // The local indices of t's corners in a canonical order: the smallest vertex id first, then the
+    // smallest of the other three, by an even permutation (so with t's orientation). How construction
+    // happened to number the corners does not show in it.
+    void canonical_corners(uint32_t t, uint32_t local[4]) const;
 
     // Some tetrahedron (finite or infinite) that contains vertex v.
     uint32_t vertex_tet(uint32_t v) const { return vertex_tet_[v]; }
