@@ -174,9 +174,9 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
         order[bucket_end[vertex[0]]++] = t;  // bucket_end[v] ends as the end of v's bucket
     }
     const auto by_corners = [&](uint32_t s, uint32_t t) {
-        uint32_t vs[4], vt[4];
-        corners(s, local, vs);
-        corners(t, local, vt);
+        uint32_t ls[4], lt[4], vs[4], vt[4];
+        corners(s, ls, vs);
+        corners(t, lt, vt);
         return std::lexicographical_compare(vs + 1, vs + 4, vt + 1, vt + 4);
     };
     for (size_t v = 0, begin = 0; v < delaunay.vertex_count(); begin = bucket_end[v++]) {

@@ -190,7 +190,7 @@ typedef struct dbrg_params {
      * sequential. 1 runs on the calling thread only; 0 (the default) uses every processor the process
      * may run on. Extra threads are started only for inputs of about 22,000 points or more. They never
      * call the allocator or the progress callback: those stay on the calling thread. The result is the
-     * same for any value. */
+     * same for any value (only the predicate counts in dbrg_stats differ). */
     uint32_t threads;
 
     /* NULL: the C library's malloc/realloc/free. Copied at the start of the call. */
@@ -370,8 +370,8 @@ DBRG_API uint32_t dbrg_tetrahedralization_tet_count(const dbrg_tetrahedralizatio
 
 /* Returns 4 * tet_count indices into the caller's points; each tetrahedron (a, b, c, d) is
  * positively oriented: d lies on the side of plane (a, b, c) from which a, b, c appear clockwise.
- * The order is canonical (by the smallest vertex of each, which comes first), so it does not depend
- * on params->threads. NULL when there are none. */
+ * Their order, and the order of each one's corners, depend on the points only, not on
+ * params->threads. NULL when there are none. */
 DBRG_API const uint32_t* dbrg_tetrahedralization_tets(const dbrg_tetrahedralization* tets);
 
 /* Returns 4 * tet_count entries: entry 4*t + f is the tetrahedron across the face of t opposite its

@@ -182,7 +182,7 @@ private:
     // time; where a tetrahedron it needs is claimed by one of them, or its fixed scratch space or slots do
     // not suffice, it changes nothing and sets `left_out`.
     template <bool Shared> dbrg_status insert(Inserter& in, uint32_t v, const double* next);
-    template <bool Shared> dbrg_status locate(Inserter& in, const double* p, uint32_t& found);
+    template <bool Shared> dbrg_status locate(Inserter& in, uint32_t start, const double* p, uint32_t& found);
     template <bool Shared> dbrg_status give_up(Inserter& in);
     template <bool Shared> dbrg_status fail_internal(Inserter& in, const char* message);
     bool in_conflict(Inserter& in, const uint32_t* tet, const double* p);
@@ -196,7 +196,7 @@ private:
     // Shared insertion of the last BRIO round.
     dbrg_status insert_last_round(uint32_t parts);
     dbrg_status prepare_inserter(Inserter& in, uint32_t part, uint32_t deferred_room);
-    void insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, uint32_t parts, dbrg_status& status);
+    void insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, dbrg_status& status);
     bool claim(Inserter& in, uint32_t t);
     void release_claims(Inserter& in);
     bool room_for(Inserter& in, size_t faces, size_t cavity_size);
@@ -315,10 +315,11 @@ bool DelaunayBuilder::in_conflict(Inserter& in, const uint32_t* tet, const doubl
     return insphere_sos(a, b, c, point(tet[3]), p, counters) > 0;
 }
 
+// Walks from tetrahedron `start` (claimed when shared) to one that contains p, or that p is beyond.
 template <bool Shared>
-dbrg_status DelaunayBuilder::locate(Inserter& in, const double* p, uint32_t& found) {
+dbrg_status DelaunayBuilder::locate(Inserter& in, uint32_t start, const double* p, uint32_t& found) {
     found = NO_TET;
-    uint32_t t = in.hint;  // claimed when shared
+    uint32_t t = start;
     if (vertex_[4 * size_t(t) + 3] == INFINITE_VERTEX) {
         t = adjacency_[4 * size_t(t) + 3] >> 2;
         if (Shared && !claim(in, t)) return give_up<Shared>(in);
@@ -468,7 +469,7 @@ dbrg_status DelaunayBuilder::insert(Inserter& in, uint32_t v, const double* next
     in.boundary.clear();
     in.left_out = false;
     uint32_t first;
-    DBRG_PROPAGATE(locate<Shared>(in, p, first));
+    DBRG_PROPAGATE(locate<Shared>(in, in.hint, p, first));
     if (first == NO_TET) return DBRG_OK;  // given up
     // Giving up from here, the next walk starts where this one ended.
     const auto leave = [&]() {
@@ -687,18 +688,19 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
     Inserter* inserters[MAX_INSERTION_THREADS] = {&main_};
     BrioOrder::Slice slices[MAX_INSERTION_THREADS];
     dbrg_status statuses[MAX_INSERTION_THREADS];
+    // Whether a part's hint is a tetrahedron of the tetrahedralization as it is now: the calling thread's
+    // is, from its last insertion; after a phase, those of the parts that ran (each held its own). A part
+    // that sat a phase out while others inserted finds a start again: its tetrahedron may be gone.
+    bool hint_live[MAX_INSERTION_THREADS] = {true};
     for (uint32_t part = 0; part < parts; ++part) {
         if (part > 0) inserters[part] = &others[part].emplace(memory_);
         slices[part] = order_->last_round_slice(part, parts);
         DBRG_PROPAGATE(prepare_inserter(*inserters[part], part, slices[part].span() / DEFERRED_SHARE + 64));
-        // The others start from a tetrahedron around their first point, found by the calling thread.
-        BrioOrder::Slice peek = slices[part];
-        uint32_t first;
-        if (part > 0 && peek.next(first)) DBRG_PROPAGATE(locate<false>(main_, point(first), inserters[part]->hint));
         inserters[part]->random ^= part;  // other walks, the same result
     }
+    uint32_t anchor = main_.hint;  // a live tetrahedron
     bool store_full = true;
-    for (uint32_t phase = 0; store_full; ++phase) {
+    while (store_full) {
         const size_t slots = std::max(projected_slots(), size_t(slot_end_) + size_t(CHUNK_SLOTS) * parts);
         if (4 * slots > out_.vertices_.size()) DBRG_PROPAGATE(size_store(std::min<size_t>(slots, MAX_TET_SLOTS)));
         const uint32_t capacity = static_cast<uint32_t>(out_.vertices_.size() / 4);
@@ -712,14 +714,21 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
             statuses[part] = DBRG_OK;
             in.out_of_slots = false;
             in.held.clear();
-            // Two parts that would start from the same tetrahedron: the later one's points wait.
-            if (slices[part].span() == 0 || in.deferred.size() == in.deferred.capacity() || claims_[in.hint] != 0) continue;
+            BrioOrder::Slice rest = slices[part];
+            uint32_t first;
+            if (!rest.next(first) || in.deferred.size() == in.deferred.capacity()) continue;
+            if (!hint_live[part]) {
+                // Found by the calling thread, walking from a live tetrahedron to the part's next point.
+                DBRG_PROPAGATE(locate<false>(main_, anchor, point(first), in.hint));
+                hint_live[part] = true;
+            }
+            if (claims_[in.hint] != 0) continue;  // the same start as another part's: this one waits
             claims_[in.hint] = in.mark;
             in.held.push_back(in.hint);  // within the capacity prepare_inserter reserved
             active[part] = true;
         }
         run_parts(parts, [&](uint32_t part) {
-            if (active[part]) insert_slice(*inserters[part], slices[part], part, parts, statuses[part]);
+            if (active[part]) insert_slice(*inserters[part], slices[part], part, statuses[part]);
         });
         // The calling thread alone again.
         slot_end_ = std::min(next_chunk_.load(std::memory_order_relaxed), capacity);
@@ -736,9 +745,14 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
             store_full = store_full || in.out_of_slots;
         }
         inserted_ += inserted;
+        for (uint32_t part = 0; part < parts; ++part) {
+            hint_live[part] = active[part] || (hint_live[part] && inserted == 0);
+            if (hint_live[part]) anchor = inserters[part]->hint;
+        }
         store_full = store_full && inserted > 0;
     }
     claims_.release();
+    if (!hint_live[0]) main_.hint = anchor;
     for (uint32_t part = 1; part < parts; ++part) {
         Inserter& in = *inserters[part];
         while (in.free_head != NO_TET) {
@@ -751,17 +765,16 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
         main_.counters.filter_failures += in.counters.filter_failures;
         main_.counters.perturbations += in.counters.perturbations;
     }
-    // What the threads left: the points they gave up, and the rest of a stretch they stopped in.
+    // What the threads left: the points they set aside, and the rest of a stretch they stopped in.
+    const auto insert_left = [&](uint32_t v) {
+        if (inserted_ % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(inserted_) / count_));
+        ++inserted_;
+        return insert<false>(main_, v, nullptr);
+    };
     for (uint32_t part = 0; part < parts; ++part) {
-        for (uint32_t v : inserters[part]->deferred) {
-            DBRG_PROPAGATE(insert<false>(main_, v, nullptr));
-            ++inserted_;
-        }
+        for (uint32_t v : inserters[part]->deferred) DBRG_PROPAGATE(insert_left(v));
         uint32_t v;
-        while (slices[part].next(v)) {
-            DBRG_PROPAGATE(insert<false>(main_, v, nullptr));
-            ++inserted_;
-        }
+        while (slices[part].next(v)) DBRG_PROPAGATE(insert_left(v));
     }
     return DBRG_OK;
 }
@@ -783,12 +796,12 @@ dbrg_status DelaunayBuilder::prepare_inserter(Inserter& in, uint32_t part, uint3
     return DBRG_OK;
 }
 
-// One thread's stretch. Points it gives up are listed for the calling thread; once that list is full,
+// One thread's stretch. Points it sets aside are listed for the calling thread; once that list is full,
 // or the store is, the thread stops and leaves the rest of its stretch in `slice`. The calling thread's
-// part also reports progress (estimated from its own count) and stops every part when the caller cancels.
-void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, uint32_t parts,
-                                   dbrg_status& status) {
-    uint32_t next_at = slice.position(), next;
+// part also reports progress (counting its own points only, so that the fraction never runs ahead) and
+// stops every part when the caller cancels.
+void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, dbrg_status& status) {
+    uint32_t next_at = slice.position(), next, steps = 0;
     bool more = slice.next(next);
     while (more && !stop_.load(std::memory_order_relaxed)) {
         const uint32_t v = next, v_at = next_at;
@@ -807,8 +820,8 @@ void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32
             slice.rewind(v_at);
             return;
         }
-        if (part == 0 && in.inserted % PROGRESS_INTERVAL == 0) {
-            status = context_.report(DBRG_STAGE_DELAUNAY, double(inserted_ + parts * in.inserted) / count_);
+        if (part == 0 && ++steps % PROGRESS_INTERVAL == 0) {
+            status = context_.report(DBRG_STAGE_DELAUNAY, double(inserted_ + in.inserted) / count_);
             if (status != DBRG_OK) {
                 stop_.store(true, std::memory_order_relaxed);
                 return;
