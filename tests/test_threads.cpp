@@ -35,6 +35,10 @@ struct Outcome {
     std::vector<uint32_t> adjacency;
     uint64_t live_blocks_after = 0;
     uint64_t progress_reports = 0;
+    // Allocator and progress calls from another thread than the caller's: the library's threads must make none.
+    uint64_t allocations_off_thread = 0;
+    uint64_t reports_off_thread = 0;
+    std::thread::id caller = std::this_thread::get_id();
 
     bool operator==(const Outcome& o) const {
         return status == o.status && triangles == o.triangles && loops == o.loops && tets == o.tets && adjacency == o.adjacency;
@@ -42,7 +46,9 @@ struct Outcome {
 };
 
 int count_report(void* user, dbrg_stage, double) {
-    ++*static_cast<uint64_t*>(user);
+    Outcome& out = *static_cast<Outcome*>(user);
+    ++out.progress_reports;
+    out.reports_off_thread += std::this_thread::get_id() != out.caller;
     return 0;
 }
 
@@ -55,7 +61,7 @@ Outcome run(const std::vector<double>& xyz, uint32_t threads) {
     dbrg_params_init(&params);
     params.allocator = allocator.get();
     params.progress = count_report;
-    params.progress_user = &out.progress_reports;
+    params.progress_user = &out;
     params.threads = threads;
     const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
 
@@ -79,6 +85,7 @@ Outcome run(const std::vector<double>& xyz, uint32_t threads) {
     }
     dbrg_tetrahedralization_destroy(tets);
     out.live_blocks_after = allocator.live_blocks();
+    out.allocations_off_thread = allocator.foreign_thread_calls();
     return out;
 }
 
@@ -133,6 +140,9 @@ TEST_CASE("an input large enough to be split gives the same results on one threa
         const Outcome several = run(xyz, threads);
         CHECK(several == one);
         CHECK(several.live_blocks_after == 0);
+        CHECK(several.progress_reports > 0);
+        CHECK(several.allocations_off_thread == 0);
+        CHECK(several.reports_off_thread == 0);
     }
 }
 

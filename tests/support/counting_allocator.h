@@ -1,11 +1,15 @@
 // Test support: a dbrg_allocator that counts requests and live blocks, checks that the sizes the library
-// hands back match the blocks it was given, and refuses a chosen request on purpose. Header-only and
+// hands back match the blocks it was given and that every call comes from the thread that made it (the
+// library's own threads must never allocate), and refuses a chosen request on purpose. Header-only and
 // free of doctest, so that the fuzz harnesses use it too.
 #pragma once
 
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
+
+#include <atomic>
+#include <thread>
 
 #include "dbrg/dbrg.h"
 
@@ -36,11 +40,17 @@ public:
     size_t largest_request() const { return largest_request_; }
     // Calls whose size or block did not match what was allocated: always 0 in a correct library.
     uint64_t contract_violations() const { return violations_; }
+    // Calls from another thread than the one that made the allocator: always 0 in a correct library.
+    uint64_t foreign_thread_calls() const { return foreign_calls_.load(); }
 
 private:
     // Each block carries its size in a header, so that sizes given back can be checked; the header keeps
     // the caller's part aligned for any scalar.
     static constexpr size_t HEADER = alignof(max_align_t) > sizeof(size_t) ? alignof(max_align_t) : sizeof(size_t);
+
+    void note_thread() {
+        if (std::this_thread::get_id() != owner_) ++foreign_calls_;
+    }
 
     bool refuse(size_t size) {
         ++requests_;
@@ -54,6 +64,7 @@ private:
 
     static void* allocate(void* user, size_t size) {
         CountingAllocator& self = *static_cast<CountingAllocator*>(user);
+        self.note_thread();
         if (self.refuse(size) || size > SIZE_MAX - HEADER) return nullptr;
         char* base = static_cast<char*>(malloc(HEADER + size));
         if (!base) return nullptr;
@@ -65,6 +76,7 @@ private:
 
     static void* reallocate(void* user, void* block, size_t old_size, size_t new_size) {
         CountingAllocator& self = *static_cast<CountingAllocator*>(user);
+        self.note_thread();
         if (!block) {
             ++self.violations_;  // the contract gives reallocate only blocks from allocate
             return nullptr;
@@ -80,6 +92,7 @@ private:
 
     static void deallocate(void* user, void* block, size_t size) {
         CountingAllocator& self = *static_cast<CountingAllocator*>(user);
+        self.note_thread();
         if (!block) return;
         if (stored_size(block) != size) ++self.violations_;
         --self.live_blocks_;
@@ -96,6 +109,8 @@ private:
     size_t live_bytes_ = 0;
     size_t largest_request_ = 0;
     uint64_t violations_ = 0;
+    std::thread::id owner_ = std::this_thread::get_id();
+    std::atomic<uint64_t> foreign_calls_{0};
 };
 
 } // namespace dbrg::test
