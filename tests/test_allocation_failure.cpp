@@ -159,6 +159,47 @@ TEST_CASE("cancelling at any progress report gives CANCELLED and leaks nothing")
     }
 }
 
+TEST_CASE("an input split among threads: refusals and cancelling while threads insert leak nothing") {
+    // 40,000 points: most of the Delaunay insertion runs on two threads, which neither allocate nor report
+    // (the calling thread reports for them, and stops them when the caller cancels). Cancelling at every
+    // report of the call; refusing a sample of its allocations, once or for good.
+    const std::vector<double> xyz = samples::sample(samples::Shape::bumpy_sphere, 40000);
+    test::CountingAllocator allocator;
+    Canceller canceller;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.allocator = allocator.get();
+    params.threads = 2;
+    params.progress = Canceller::report;
+    params.progress_user = &canceller;
+    const Call full = call(EntryPoint::tetrahedralize, xyz, params);
+    REQUIRE(full.status == DBRG_OK);
+    require_nothing_held(allocator);
+    const uint64_t requests = allocator.requests(), reports = canceller.calls;
+    for (uint64_t k = 1; k <= reports; ++k) {
+        CAPTURE(k);
+        canceller = Canceller{0, k, 0};
+        const Call cancelled = call(EntryPoint::tetrahedralize, xyz, params);
+        REQUIRE(cancelled.status == DBRG_ERR_CANCELLED);
+        REQUIRE(canceller.calls == k);
+        require_nothing_held(allocator);
+    }
+    canceller = Canceller{};
+    const uint64_t SAMPLES = 24;
+    for (bool persistent : {false, true}) {
+        for (uint64_t i = 0; i < SAMPLES; ++i) {
+            const uint64_t k = 1 + requests * i / SAMPLES;
+            CAPTURE(persistent);
+            CAPTURE(k);
+            allocator.fail_at(k, persistent);
+            const Call failed = call(EntryPoint::tetrahedralize, xyz, params);
+            REQUIRE(failed.status == DBRG_ERR_OUT_OF_MEMORY);
+            require_nothing_held(allocator);
+        }
+    }
+    CHECK(allocator.foreign_thread_calls() == 0);
+}
+
 TEST_CASE("point counts beyond the limits fail before anything is allocated or read") {
     // Four real points; the counts and strides below claim far more, which must never be read.
     const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
