@@ -142,7 +142,7 @@ struct Inserter {
         : cavity(memory), outside(memory), boundary(memory), new_tets(memory), new_slots(memory), edges(memory),
           filed(memory), held(memory), deferred(memory) {}
 
-    uint32_t hint = 0;  // a tetrahedron made by the last insertion: the next walk starts there
+    uint32_t hint = 0;  // where the next walk starts: a tetrahedron of the last insertion, or where one given up got to
     uint64_t random = WALK_SEED;
     PredicateCounters counters;
     int64_t finite_change = 0;    // finite tetrahedra made less those removed
