@@ -159,28 +159,39 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     if (!bucket_end.resize(size_t(delaunay.vertex_count()) + 1, 0) || !number.resize(slots, DBRG_NO_NEIGHBOR)) {
         return context.fail_out_of_memory();
     }
+    // The first canonical corner is the smallest vertex: the counting sort needs no more than that.
+    const auto smallest = [&](uint32_t t) {
+        return std::min(std::min(delaunay.tet_vertex(t, 0), delaunay.tet_vertex(t, 1)),
+                        std::min(delaunay.tet_vertex(t, 2), delaunay.tet_vertex(t, 3)));
+    };
     uint32_t local[4], vertex[4], finite = 0;
     for (uint32_t t = 0; t < slots; ++t) {
         if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
-        corners(t, local, vertex);
-        ++bucket_end[vertex[0] + 1];
+        ++bucket_end[smallest(t) + 1];
         ++finite;
     }
     for (size_t v = 1; v < bucket_end.size(); ++v) bucket_end[v] += bucket_end[v - 1];
     if (!order.resize(finite)) return context.fail_out_of_memory();
     for (uint32_t t = 0; t < slots; ++t) {
         if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
-        corners(t, local, vertex);
-        order[bucket_end[vertex[0]]++] = t;  // bucket_end[v] ends as the end of v's bucket
+        order[bucket_end[smallest(t)]++] = t;  // bucket_end[v] ends as the end of v's bucket
     }
-    const auto by_corners = [&](uint32_t s, uint32_t t) {
-        uint32_t ls[4], lt[4], vs[4], vt[4];
-        corners(s, ls, vs);
-        corners(t, lt, vt);
-        return std::lexicographical_compare(vs + 1, vs + 4, vt + 1, vt + 4);
+    // Within a bucket, by the other three corners, each tetrahedron's computed once.
+    struct Keyed {
+        uint32_t rest[3];
+        uint32_t slot;
     };
+    Array<Keyed> bucket(context.memory);
     for (size_t v = 0, begin = 0; v < delaunay.vertex_count(); begin = bucket_end[v++]) {
-        std::sort(order.begin() + begin, order.begin() + bucket_end[v], by_corners);
+        bucket.clear();
+        for (size_t i = begin; i < bucket_end[v]; ++i) {
+            corners(order[i], local, vertex);
+            if (!bucket.push_back(Keyed{{vertex[1], vertex[2], vertex[3]}, order[i]})) return context.fail_out_of_memory();
+        }
+        std::sort(bucket.begin(), bucket.end(), [](const Keyed& x, const Keyed& y) {
+            return std::lexicographical_compare(x.rest, x.rest + 3, y.rest, y.rest + 3);
+        });
+        for (size_t i = begin; i < bucket_end[v]; ++i) order[i] = bucket[i - begin].slot;
     }
     for (uint32_t i = 0; i < finite; ++i) number[order[i]] = i;
     if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {

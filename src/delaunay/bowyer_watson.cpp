@@ -666,9 +666,7 @@ dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_
     }
     pending_.release();
     out_.finite_tets_ = static_cast<uint32_t>(int64_t(out_.finite_tets_) + main_.finite_change);
-    out_.counters.calls += main_.counters.calls;
-    out_.counters.filter_failures += main_.counters.filter_failures;
-    out_.counters.perturbations += main_.counters.perturbations;
+    out_.counters += main_.counters;
     out_.vertices_.shrink(4 * size_t(slot_end_));
     out_.adjacency_.shrink(4 * size_t(slot_end_));
     return context_.report(DBRG_STAGE_DELAUNAY, 1.0);
@@ -761,9 +759,7 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
             free_slot(main_, s);
         }
         main_.finite_change += in.finite_change;
-        main_.counters.calls += in.counters.calls;
-        main_.counters.filter_failures += in.counters.filter_failures;
-        main_.counters.perturbations += in.counters.perturbations;
+        main_.counters += in.counters;
     }
     // What the threads left: the points they set aside, and the rest of a stretch they stopped in.
     const auto insert_left = [&](uint32_t v) {
