@@ -1,7 +1,10 @@
 // Concurrency: four threads reconstructing and tetrahedralizing different inputs at once, each with its own
 // allocator and progress callback, get exactly the results the same calls give one at a time; and one
-// result is read from four threads at once. Built and run under ThreadSanitizer in CI (.ci/test).
+// result is read from four threads at once; threads the system refuses leave their work to the caller.
+// Built and run under ThreadSanitizer in CI (.ci/test).
 #include <doctest/doctest.h>
+
+#include <pthread.h>
 
 #include <atomic>
 #include <string>
@@ -145,6 +148,53 @@ TEST_CASE("an input large enough to be split gives the same results on one threa
         CHECK(several.reports_off_thread == 0);
     }
 }
+
+#if defined(__GLIBC__)
+namespace {
+
+// While it lives, new threads get a default stack larger than any address space, so pthread_create
+// refuses them (a GNU extension: threads started without attributes take the process's defaults).
+class ThreadsRefused {
+public:
+    ThreadsRefused() {
+        pthread_getattr_default_np(&saved_);
+        pthread_attr_t huge;
+        pthread_attr_init(&huge);
+        pthread_attr_setstacksize(&huge, size_t(1) << 48);
+        pthread_setattr_default_np(&huge);
+        pthread_attr_destroy(&huge);
+    }
+    ~ThreadsRefused() {
+        pthread_setattr_default_np(&saved_);
+        pthread_attr_destroy(&saved_);
+    }
+
+private:
+    pthread_attr_t saved_;
+};
+
+void* do_nothing(void*) { return nullptr; }
+
+} // namespace
+
+TEST_CASE("threads the system refuses to start leave their parts to the calling thread: same results") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::bumpy_sphere, 40000);
+    const Outcome one = run(xyz, 1);
+    REQUIRE(one.status == DBRG_OK);
+    ThreadsRefused refused;
+    pthread_t probe;
+    const int started = pthread_create(&probe, nullptr, do_nothing, nullptr);
+    if (started == 0) pthread_join(probe, nullptr);
+    REQUIRE_MESSAGE(started != 0, "the huge default stack did not make pthread_create refuse");
+    for (uint32_t threads : {2u, 0u}) {
+        CAPTURE(threads);
+        const Outcome several = run(xyz, threads);
+        CHECK(several == one);
+        CHECK(several.live_blocks_after == 0);
+        CHECK(several.progress_reports > 0);
+    }
+}
+#endif
 
 TEST_CASE("one result read from four threads at once") {
     const std::vector<double> xyz = samples::sample(samples::Shape::open_cylinder, 1500);
