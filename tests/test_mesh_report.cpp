@@ -396,6 +396,132 @@ TEST_CASE("JSON has every key, genus null when unknown") {
     CHECK(json.find("\"points_used\": 9\n") != std::string::npos);
 }
 
+namespace {
+
+// A "triangle" whose three corners (three vertices) sit at one point: all its samples are that point,
+// so the distance from it is the distance from the point.
+MeshData point_probe(double x, double y, double z) { return make_mesh({x, y, z, x, y, z, x, y, z}, {0, 1, 2}); }
+
+SurfaceDistance distance(const MeshData& from, const MeshData& to) {
+    const std::optional<SurfaceDistance> d = surface_distance(from, to);
+    REQUIRE(d.has_value());
+    return *d;
+}
+
+MeshData unit_square(double z, double scale = 1) {
+    return make_mesh({0, 0, z * scale, scale, 0, z * scale, scale, scale, z * scale, 0, scale, z * scale}, {0, 1, 2, 0, 2, 3});
+}
+
+} // namespace
+
+TEST_CASE("surface distance: from points to the nearest corner, edge or inside of a triangle") {
+    const MeshData target = make_mesh({0, 0, 0, 4, 0, 0, 0, 4, 0}, {0, 1, 2});
+    const struct {
+        double x, y, z, expected;
+    } probes[] = {
+        {1, 1, 0, 0},                 // inside
+        {1, 1, -3, 3},                // below the inside
+        {-3, -4, 0, 5},               // beyond corner (0, 0)
+        {7, 0, 4, 5},                 // beyond corner (4, 0)
+        {2, -2, 0, 2},                // beyond edge y = 0
+        {-1, 2, 1, std::sqrt(2.0)},   // beyond edge x = 0, above the plane
+        {3, 3, 0, std::sqrt(2.0)},    // beyond the long edge x + y = 4
+        {0, 6, 0, 2},                 // beyond corner (0, 4)
+    };
+    for (const auto& p : probes) {
+        CAPTURE(p.x);
+        CAPTURE(p.y);
+        CAPTURE(p.z);
+        const SurfaceDistance d = distance(point_probe(p.x, p.y, p.z), target);
+        CHECK(d.max == doctest::Approx(p.expected).epsilon(1e-12));
+        CHECK(d.mean == doctest::Approx(p.expected).epsilon(1e-12));
+        CHECK(d.samples == 7);
+    }
+    // A target without area (collinear corners): the nearest point is on its longest side.
+    const MeshData needle = make_mesh({0, 0, 0, 1, 0, 0, 2, 0, 0}, {0, 1, 2});
+    CHECK(distance(point_probe(1.5, 2, 0), needle).max == doctest::Approx(2.0));
+    CHECK(distance(point_probe(3, 0, 0), needle).max == doctest::Approx(1.0));
+}
+
+TEST_CASE("surface distance: between whole meshes, both ways, at any scale") {
+    CHECK(distance(grid(5), grid(5)).max == 0);
+    for (double scale : {1.0, 1e300, 1e-300}) {
+        CAPTURE(scale);
+        const SurfaceDistance lifted = distance(unit_square(0.25, scale), unit_square(0, scale));
+        CHECK(lifted.max == doctest::Approx(0.25 * scale).epsilon(1e-12));
+        CHECK(lifted.mean == doctest::Approx(0.25 * scale).epsilon(1e-12));
+        CHECK(lifted.samples == 14);
+    }
+    // A small triangle inside a large one: none of it is away from the large one, while the large one's
+    // corner (4, 0) is sqrt(5) from the small one's corner (2, 1).
+    const MeshData large = make_mesh({0, 0, 0, 4, 0, 0, 0, 4, 0}, {0, 1, 2});
+    const MeshData small = make_mesh({1, 1, 0, 2, 1, 0, 1, 2, 0}, {0, 1, 2});
+    CHECK(distance(small, large).max < 1e-12);
+    CHECK(distance(large, small).max == doctest::Approx(std::sqrt(5.0)));
+}
+
+TEST_CASE("surface distance: unusable triangles are left out; nothing usable or too much work gives none") {
+    const double nan = std::nan("");
+    // A triangle with a NaN corner and one with a repeated corner take no part.
+    MeshData from = make_mesh({0, 0, 1, 1, 0, 1, 0, 1, 1, nan, 0, 0, 5, 5, 5}, {0, 1, 2, 3, 1, 2, 4, 4, 1});
+    const SurfaceDistance d = distance(from, unit_square(0));
+    CHECK(d.max == doctest::Approx(1.0));
+    CHECK(d.samples == 7);
+    CHECK_FALSE(surface_distance(make_mesh({nan, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 2}), unit_square(0)).has_value());
+    CHECK_FALSE(surface_distance(unit_square(0), make_mesh({0, 0, 0, 1, 0, 0}, {0, 0, 1})).has_value());
+    const double huge = 1.5e308;
+    CHECK_FALSE(surface_distance(point_probe(-huge, -huge, -huge), point_probe(huge, huge, huge)).has_value());
+
+    // Thousands of thin triangles crossing one square in every direction: their boxes all cover the
+    // middle, so a point above it would be compared with every one of them. The search gives up.
+    std::vector<double> xyz;
+    std::vector<uint32_t> triangles;
+    const uint32_t slivers = 4000;
+    for (uint32_t i = 0; i < slivers; ++i) {
+        const double angle = PI * i / slivers, c = std::cos(angle), s = std::sin(angle);
+        const uint32_t base = static_cast<uint32_t>(xyz.size() / 3);
+        xyz.insert(xyz.end(), {-c, -s, 0, c, s, 0, c - 1e-9 * s, s + 1e-9 * c, 0});
+        triangles.insert(triangles.end(), {base, base + 1, base + 2});
+    }
+    MeshData probes;
+    for (uint32_t i = 0; i < 50; ++i) {
+        const MeshData p = point_probe(0.01 * i - 0.25, 0.3, 1);
+        const uint32_t base = static_cast<uint32_t>(probes.positions.size() / 3);
+        probes.positions.insert(probes.positions.end(), p.positions.begin(), p.positions.end());
+        probes.triangles.insert(probes.triangles.end(), {base, base + 1, base + 2});
+    }
+    CHECK_FALSE(surface_distance(probes, make_mesh(xyz, triangles)).has_value());
+    // The same slivers measured from themselves stop at once: every sample lies on its own triangle.
+    CHECK(distance(make_mesh(xyz, triangles), make_mesh(xyz, triangles)).max < 1e-9);
+}
+
+TEST_CASE("the reference distance is in the report and its JSON, null where it cannot be measured") {
+    MeshReport report = report_of(unit_square(0.5));
+    REQUIRE(add_reference_distance(unit_square(0.5), unit_square(0), report).ok);
+    REQUIRE(report.reference_distance.has_value());
+    const ReferenceDistance& d = *report.reference_distance;
+    REQUIRE(d.side_mean.has_value());
+    CHECK(*d.side_mean == doctest::Approx((4 + 2 * std::sqrt(2.0)) / 6));
+    REQUIRE(d.to_reference.has_value());
+    REQUIRE(d.from_reference.has_value());
+    CHECK(d.to_reference->max == doctest::Approx(0.5));
+    CHECK(d.from_reference->mean == doctest::Approx(0.5));
+    std::string json = to_json(report);
+    CHECK(json.find("\"distance_to_reference_max\": 0.5,") != std::string::npos);
+    CHECK(json.find("\"distance_from_reference_mean\": 0.5") != std::string::npos);
+
+    MeshData empty = make_mesh({0, 0, 0}, {});
+    REQUIRE(add_reference_distance(unit_square(0), empty, report).ok);
+    REQUIRE(report.reference_distance.has_value());
+    CHECK_FALSE(report.reference_distance->side_mean.has_value());
+    CHECK_FALSE(report.reference_distance->to_reference.has_value());
+    json = to_json(report);
+    CHECK(json.find("\"reference_side_mean\": null,") != std::string::npos);
+    CHECK(json.find("\"distance_to_reference_max\": null,") != std::string::npos);
+    MeshData broken = make_mesh({0, 0, 0}, {0, 1, 2});
+    CHECK_FALSE(add_reference_distance(unit_square(0), broken, report).ok);
+}
+
 TEST_CASE("a two-million-face mesh is reported in about a second") {
     const MeshData mesh = torus(1000, 1000);
     const auto start = std::chrono::steady_clock::now();

@@ -21,7 +21,11 @@ const char* const STATS_USAGE =
     "  --points INPUT     also count how many points of INPUT (any readable file) are mesh vertices\n"
     "                     (points_input, points_used; matched by exact coordinates)\n"
     "  --reference REF    also report face_recall: the share of REF's triangles that MESH contains\n"
-    "                     (corners matched by exact coordinates, in any order)\n"
+    "                     (corners matched by exact coordinates, in any order), and how far the two\n"
+    "                     surfaces stray from each other: distance_to_reference_max / _mean (from\n"
+    "                     points on MESH's triangles to REF's surface), distance_from_reference_max /\n"
+    "                     _mean (the other way), in REF's units; reference_side_mean, the mean length\n"
+    "                     of REF's triangle sides, is the scale to read them in\n"
     "  -o, --output FILE  write the JSON to FILE instead of standard output\n"
     "  -h, --help         show this help\n";
 
@@ -56,6 +60,7 @@ int run_stats(int argc, char** argv) {
         io::MeshData reference;
         status = io::read_mesh(args.value("--reference"), reference);
         if (status) status = io::add_face_recall(mesh, reference, report);
+        if (status) status = io::add_reference_distance(mesh, reference, report);
         if (!status) return report_error(EXIT_FAILED, status.message);
     }
     if (args.has("--points")) {

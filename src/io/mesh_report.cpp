@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <new>
 #include <vector>
@@ -274,6 +275,33 @@ IoStatus add_face_recall(const MeshData& mesh, const MeshData& reference, MeshRe
     });
 }
 
+IoStatus add_reference_distance(const MeshData& mesh, const MeshData& reference, MeshReport& report) {
+    IoStatus status = check_arrays(mesh, "mesh");
+    if (status) status = check_arrays(reference, "reference");
+    if (!status) return status;
+    return guarded([&] {
+        double sides = 0;
+        uint64_t count = 0;
+        for (size_t t = 0; t < reference.triangle_count(); ++t) {
+            for (size_t k = 0; k < 3; ++k) {
+                const double* a = &reference.positions[3 * size_t(reference.triangles[3 * t + k])];
+                const double* b = &reference.positions[3 * size_t(reference.triangles[3 * t + (k + 1) % 3])];
+                const double length = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+                if (std::isfinite(length) && length > 0) {
+                    sides += length;
+                    ++count;
+                }
+            }
+        }
+        ReferenceDistance distance;
+        if (count > 0 && std::isfinite(sides)) distance.side_mean = sides / double(count);
+        distance.to_reference = surface_distance(mesh, reference);
+        distance.from_reference = surface_distance(reference, mesh);
+        report.reference_distance = distance;
+        return IoStatus::success();
+    });
+}
+
 IoStatus add_points_used(const MeshData& mesh, const MeshData& points, MeshReport& report) {
     IoStatus status = check_arrays(mesh, "mesh");
     if (!status) return status;
@@ -315,6 +343,16 @@ std::string to_json(const MeshReport& report) {
         json.add_unsigned("reference_faces", *report.reference_faces);
         if (report.face_recall) json.add_number("face_recall", *report.face_recall);
         else json.add_null("face_recall");
+    }
+    if (const std::optional<ReferenceDistance>& distance = report.reference_distance) {
+        const auto add_distance = [&](const char* max_key, const char* mean_key, const std::optional<SurfaceDistance>& d) {
+            if (d) json.add_number(max_key, d->max).add_number(mean_key, d->mean);
+            else json.add_null(max_key).add_null(mean_key);
+        };
+        if (distance->side_mean) json.add_number("reference_side_mean", *distance->side_mean);
+        else json.add_null("reference_side_mean");
+        add_distance("distance_to_reference_max", "distance_to_reference_mean", distance->to_reference);
+        add_distance("distance_from_reference_max", "distance_from_reference_mean", distance->from_reference);
     }
     if (report.points_input) json.add_unsigned("points_input", *report.points_input).add_unsigned("points_used", *report.points_used);
     return json.str() + "\n";

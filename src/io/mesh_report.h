@@ -28,8 +28,17 @@
 #include <string>
 
 #include "io/mesh_io.h"
+#include "io/surface_distance.h"
 
 namespace dbrg::io {
+
+// How far a mesh and a reference mesh stray from each other (see surface_distance); each figure is none
+// when it cannot be measured.
+struct ReferenceDistance {
+    std::optional<double> side_mean;              // the mean length of the reference's triangle sides: the unit to read the distances in
+    std::optional<SurfaceDistance> to_reference;    // from the mesh's triangles: bridges, spanning triangles
+    std::optional<SurfaceDistance> from_reference;  // from the reference's triangles: surface the mesh does not cover
+};
 
 struct MeshReport {
     uint64_t faces = 0;
@@ -50,6 +59,8 @@ struct MeshReport {
     // Filled by add_face_recall.
     std::optional<uint64_t> reference_faces;
     std::optional<double> face_recall;  // none when the reference has no faces
+    // Filled by add_reference_distance.
+    std::optional<ReferenceDistance> reference_distance;
     // Filled by add_points_used.
     std::optional<uint64_t> points_input;
     std::optional<uint64_t> points_used;
@@ -62,6 +73,9 @@ IoStatus make_mesh_report(const MeshData& mesh, MeshReport& report);
 // Sets reference_faces and face_recall: the share of the reference's triangles whose three corner
 // positions, exactly equal and in any order, are the corners of some triangle of `mesh`.
 IoStatus add_face_recall(const MeshData& mesh, const MeshData& reference, MeshReport& report);
+
+// Sets reference_distance.
+IoStatus add_reference_distance(const MeshData& mesh, const MeshData& reference, MeshReport& report);
 
 // Sets points_input (the number of points) and points_used: how many of them sit exactly at a vertex
 // of one of the mesh's proper faces.
