@@ -1,16 +1,18 @@
 // Fuzz target: one mesh reader (the build names it with -DFUZZ_READ_FORMAT=ply_binary, obj, off, xyz or
 // stl) on arbitrary bytes. A failed read leaves the mesh empty and says why; a successful one gives whole
-// triangles over existing vertices that the mesh report accepts; and whatever the header claims, the
-// reader holds no more than a small multiple of the input's size.
+// triangles over existing vertices that the mesh report and the surface distance accept; and whatever
+// the header claims, the reader holds no more than a small multiple of the input's size.
 #include <stddef.h>
 #include <stdint.h>
 
+#include <cmath>
 #include <string>
 
 #include "allocation_meter.h"
 #include "fuzz_check.h"
 #include "io/mesh_io.h"
 #include "io/mesh_report.h"
+#include "io/surface_distance.h"
 
 using namespace dbrg;
 
@@ -44,5 +46,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     FUZZ_CHECK(report.faces == mesh.triangle_count());
     FUZZ_CHECK(report.vertices + report.vertices_isolated == mesh.vertex_count());
     FUZZ_CHECK(!io::to_json(report).empty());
+
+    // So does the surface distance, here between the first and second half of the triangles: a measure or
+    // none, never a NaN, a negative or a hang.
+    io::MeshData first = mesh, second = mesh;
+    const size_t half = 3 * (mesh.triangle_count() / 2);
+    first.triangles.resize(half);
+    second.triangles.erase(second.triangles.begin(), second.triangles.begin() + long(half));
+    for (const auto& d : {io::surface_distance(first, second), io::surface_distance(second, first)}) {
+        if (!d) continue;
+        FUZZ_CHECK(std::isfinite(d->max) && d->mean >= 0 && d->mean <= d->max && d->samples % 7 == 0 && d->samples > 0);
+    }
     return 0;
 }
