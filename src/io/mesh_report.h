@@ -32,12 +32,13 @@
 
 namespace dbrg::io {
 
-// How far a mesh and a reference mesh stray from each other (see surface_distance); each figure is none
-// when it cannot be measured.
+// How far a mesh and a reference mesh stray from each other (see surface_distance), and the mean length
+// of the reference's triangle sides, the unit to read that in. Each figure is none when it cannot be
+// measured.
 struct ReferenceDistance {
-    std::optional<double> side_mean;              // the mean length of the reference's triangle sides: the unit to read the distances in
+    std::optional<double> side_mean;
     std::optional<SurfaceDistance> to_reference;    // from the mesh's triangles: bridges, spanning triangles
-    std::optional<SurfaceDistance> from_reference;  // from the reference's triangles: surface the mesh does not cover
+    std::optional<SurfaceDistance> from_reference;  // from the reference's triangles: surface the mesh leaves out
 };
 
 struct MeshReport {

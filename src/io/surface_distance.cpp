@@ -31,10 +31,6 @@ struct Box {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
-    void add(const Box& other) {
-        add(other.lo);
-        add(other.hi);
-    }
     double squared_distance(Point p) const {
         const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
         const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
@@ -93,7 +89,8 @@ Point corner(const MeshData& mesh, size_t t, int k) {
 std::vector<Triangle> usable_triangles(const MeshData& mesh, const Frame& frame) {
     std::vector<Triangle> out;
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-        if (usable(mesh, t)) out.push_back({frame.map(corner(mesh, t, 0)), frame.map(corner(mesh, t, 1)), frame.map(corner(mesh, t, 2))});
+        if (!usable(mesh, t)) continue;
+        out.push_back({frame.map(corner(mesh, t, 0)), frame.map(corner(mesh, t, 1)), frame.map(corner(mesh, t, 2))});
     }
     return out;
 }
@@ -142,8 +139,9 @@ public:
         }
     }
 
-    size_t size() const { return triangles_.size(); }
-    double squared_distance(Point p, uint32_t triangle) const { return squared_distance_to_triangle(p, triangles_[triangle]); }
+    double squared_distance(Point p, uint32_t triangle) const {
+        return squared_distance_to_triangle(p, triangles_[triangle]);
+    }
 
     // Lowers `best` to the squared distance from p to the nearest triangle, if that is less, and sets
     // `index` to that triangle. Each node and triangle looked at counts one visit.
@@ -167,7 +165,8 @@ public:
                 continue;
             }
             // The nearer child is searched first, so that its triangles tighten the bound for the other.
-            const bool left_first = nodes_[node.left].bounds.squared_distance(p) <= nodes_[node.left + 1].bounds.squared_distance(p);
+            const bool left_first =
+                nodes_[node.left].bounds.squared_distance(p) <= nodes_[node.left + 1].bounds.squared_distance(p);
             stack[size++] = left_first ? node.left + 1 : node.left;
             stack[size++] = left_first ? node.left : node.left + 1;
         }
@@ -222,7 +221,8 @@ std::optional<SurfaceDistance> surface_distance(const MeshData& from, const Mesh
     // Neighbouring samples have nearby nearest triangles: the last one found bounds the search for the next.
     uint32_t nearest = 0;
     for (const Triangle& t : samplers) {
-        const Point samples[7] = {t.a, t.b, t.c, (t.a + t.b) * 0.5, (t.b + t.c) * 0.5, (t.a + t.c) * 0.5, (t.a + t.b + t.c) * (1.0 / 3.0)};
+        const Point samples[7] = {t.a, t.b, t.c, (t.a + t.b) * 0.5, (t.b + t.c) * 0.5, (t.a + t.c) * 0.5,
+                                  (t.a + t.b + t.c) * (1.0 / 3.0)};
         for (const Point& p : samples) {
             double best = tree.squared_distance(p, nearest);
             tree.nearest(p, best, nearest, visits);
