@@ -13,16 +13,19 @@ two of them refined by Loop subdivision (subdivide.py: the spot to about 190k po
 about 160k; with --large also to 750k and 640k), their recall measured against the subdivided mesh, and
 generated samples of closed and open shapes (100k points; 1M and 2M too with --large). With --holes: the
 data meshes and generated poor data (graded density, sharp edges, a thin plate), each reconstructed
-with and without hole filling.
+with and without hole filling. With --holes and --cgal also the bunny's vertices under Gaussian noise of
+0.3 and 0.6 mean side lengths (a scanner's noise), measured against the clean mesh.
 """
 import argparse
 import json
+import math
 import os
+import random
 import subprocess
 import sys
 import tempfile
 
-from subdivide import subdivide_file
+from subdivide import read_mesh, subdivide_file
 
 MESH_SUFFIXES = (".obj", ".off", ".ply")
 
@@ -98,6 +101,24 @@ def add_subdivided(inputs, data, subdivided, workdir):
         path = os.path.join(workdir, f"{os.path.splitext(name)[0]}-loop{levels}.ply")
         points = subdivide_file(os.path.join(data, name), levels, path)
         inputs.append((f"{name} Loop x{levels} ({points // 1000}k)", path, path))
+
+
+def add_noisy(inputs, data, workdir, model="stanford-bunny.obj", sigmas=(0.3, 0.6)):
+    """A scan's noise: the model's vertices moved by Gaussian noise of `sigma` mean side lengths in each
+    coordinate (a fixed seed), as point files; the clean mesh stays the reference of the distances."""
+    source = os.path.join(data, model)
+    if not os.path.exists(source):
+        return
+    vertices, faces = read_mesh(source)
+    sides = [math.dist(vertices[t[k]], vertices[t[(k + 1) % 3]]) for t in faces for k in range(3)]
+    side = sum(sides) / len(sides)
+    for sigma in sigmas:
+        rng = random.Random(1)
+        path = os.path.join(workdir, f"{os.path.splitext(model)[0]}-noise{sigma}.xyz")
+        with open(path, "w") as f:
+            for v in vertices:
+                f.write(" ".join(repr(c + rng.gauss(0, sigma * side)) for c in v) + "\n")
+        inputs.append((f"{model} + noise {sigma} side", path, source))
 
 
 def compare_threads(dbrg, threads, inputs, workdir, repeats=3):
@@ -190,6 +211,7 @@ def main():
         for shape in ("graded_sphere", "cube", "capped_cylinder", "thin_plate"):
             inputs.append((f"{shape} 10k", ("demo", shape, 10_000), None))
         with tempfile.TemporaryDirectory() as workdir:
+            add_noisy(inputs, args.data, workdir)
             hole_table(args.dbrg, inputs, workdir)
         return
     sizes = [100_000] + ([1_000_000, 2_000_000] if args.large else [])
@@ -213,6 +235,7 @@ def main():
                      f"ninja -C build tests/bench/cgal-advancing-front")
         with tempfile.TemporaryDirectory() as workdir:
             add_subdivided(inputs, args.data, subdivided, workdir)
+            add_noisy(inputs, args.data, workdir)
             compare_with_cgal(args.dbrg, cgal, inputs, workdir)
         return
     print("| input | n | v | t | DT s | RG s | HF s | total s | Mpts/s | peak B/pt | boundary edges "
