@@ -235,7 +235,8 @@ std::optional<SurfaceDistance> surface_distance(const MeshData& from, const Mesh
     }
     SurfaceDistance out;
     out.max = largest * frame.half;
-    out.mean = total / double(sample_count) * frame.half;
+    // Equal distances can average a rounding above the largest.
+    out.mean = std::min(total / double(sample_count) * frame.half, out.max);
     out.samples = sample_count;
     if (!std::isfinite(out.max) || !std::isfinite(out.mean)) return std::nullopt;
     return out;
