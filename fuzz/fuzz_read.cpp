@@ -55,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     second.triangles.erase(second.triangles.begin(), second.triangles.begin() + long(half));
     for (const auto& d : {io::surface_distance(first, second), io::surface_distance(second, first)}) {
         if (!d) continue;
-        FUZZ_CHECK(std::isfinite(d->max) && d->mean >= 0 && d->mean <= d->max && d->samples % 7 == 0 && d->samples > 0);
+        FUZZ_CHECK(std::isfinite(d->max) && d->mean >= 0 && d->mean <= d->max);
     }
     return 0;
 }

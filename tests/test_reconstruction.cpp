@@ -152,7 +152,7 @@ TEST_CASE("a tessellated torus's vertices give back its surface: its triangles, 
         const Comparison c = compare(reference, result.triangles);
         // Where the jittered points make the other diagonal of two reference triangles the Delaunay one, the
         // two surfaces part by a small fraction of a side; a triangle bridging or spanning anything would
-        // stand a side or more away.
+        // have sample points a side or more away.
         CHECK(c.recall >= (jitter == 0 ? 1.0 : 0.9));
         CHECK(c.to_max < 0.25);
         CHECK(c.from_max < 0.25);

@@ -169,20 +169,22 @@ namespace {
 class ThreadsRefused {
 public:
     ThreadsRefused() {
-        pthread_getattr_default_np(&saved_);
+        saved_ = pthread_getattr_default_np(&defaults_) == 0;
         pthread_attr_t huge;
-        pthread_attr_init(&huge);
-        pthread_attr_setstacksize(&huge, size_t(1) << 48);
-        pthread_setattr_default_np(&huge);
+        if (!saved_ || pthread_attr_init(&huge) != 0) return;
+        set_ = pthread_attr_setstacksize(&huge, size_t(1) << 48) == 0 && pthread_setattr_default_np(&huge) == 0;
         pthread_attr_destroy(&huge);
     }
     ~ThreadsRefused() {
-        pthread_setattr_default_np(&saved_);
-        pthread_attr_destroy(&saved_);
+        if (!saved_) return;
+        if (set_) pthread_setattr_default_np(&defaults_);
+        pthread_attr_destroy(&defaults_);
     }
+    bool in_force() const { return set_; }
 
 private:
-    pthread_attr_t saved_;
+    pthread_attr_t defaults_;
+    bool saved_ = false, set_ = false;
 };
 
 void* do_nothing(void*) { return nullptr; }
@@ -191,6 +193,7 @@ void* do_nothing(void*) { return nullptr; }
 
 TEST_CASE("threads the system refuses to start leave their parts to the calling thread: same results") {
     ThreadsRefused refused;
+    REQUIRE(refused.in_force());
     pthread_t probe;
     const int started = pthread_create(&probe, nullptr, do_nothing, nullptr);
     if (started == 0) pthread_join(probe, nullptr);

@@ -212,26 +212,27 @@ std::optional<SurfaceDistance> surface_distance(const MeshData& from, const Mesh
     if (samplers.empty() || targets.empty()) return std::nullopt;
     const TriangleTree tree(std::move(targets));
 
-    // A search looks at 25-45 boxes and triangles on meshes of real objects; many times that, all along,
-    // means triangles piled onto each other, and the measure is given up before it takes minutes.
-    const uint64_t VISITS_PER_SAMPLE = 256, VISITS_AT_START = 1 << 20;
+    // A search looks at 25-45 boxes and triangles where the surfaces run close together, up to about 1,200
+    // where they are hundreds of sides apart; thousands on average mean triangles piled onto each other,
+    // and the measure is given up as soon as the whole allowance is spent rather than after minutes.
+    const uint64_t VISITS_PER_SAMPLE = 2048, VISITS_AT_START = 1 << 20;
     const uint64_t sample_count = 7 * uint64_t(samplers.size());
-    uint64_t visits = 0, samples_done = 0;
+    const uint64_t allowance = VISITS_AT_START + VISITS_PER_SAMPLE * sample_count;
+    uint64_t visits = 0;
     double largest = 0, total = 0;
     // Neighbouring samples have nearby nearest triangles: the last one found bounds the search for the next.
-    uint32_t nearest = 0;
+    uint32_t warm_start = 0;
     for (const Triangle& t : samplers) {
         const Point samples[7] = {t.a, t.b, t.c, (t.a + t.b) * 0.5, (t.b + t.c) * 0.5, (t.a + t.c) * 0.5,
                                   (t.a + t.b + t.c) * (1.0 / 3.0)};
         for (const Point& p : samples) {
-            double best = tree.squared_distance(p, nearest);
-            tree.nearest(p, best, nearest, visits);
+            double best = tree.squared_distance(p, warm_start);
+            tree.nearest(p, best, warm_start, visits);
             const double d = std::sqrt(best);
             largest = std::max(largest, d);
             total += d;
         }
-        samples_done += 7;
-        if (visits > VISITS_AT_START + VISITS_PER_SAMPLE * samples_done) return std::nullopt;
+        if (visits > allowance) return std::nullopt;
     }
     SurfaceDistance out;
     out.max = largest * frame.half;

@@ -21,9 +21,9 @@ struct SurfaceDistance {
 
 // The distance from `from`'s surface to `to`'s. Triangles with a repeated corner or a non-finite
 // coordinate take no part. nullopt when either mesh has no other triangle, when a distance is too large
-// for a double, or when the search takes too long: more than 256 box or triangle visits per sample point
-// so far (after a first million), where meshes of real objects take 25-45 and only triangles piled onto
-// each other by the hundred come near it.
+// for a double, or when the search takes too long: more than 2,048 box or triangle visits per sample point
+// (after a first million), where surfaces close together take 25-45, surfaces hundreds of sides apart up
+// to about 1,200, and only triangles piled onto each other by the thousand come near it.
 // The arrays must be well formed (indices below the vertex count).
 std::optional<SurfaceDistance> surface_distance(const MeshData& from, const MeshData& to);
 
