@@ -62,6 +62,20 @@ Result* open_result(const dbrg_params* given, dbrg_params& params) {
     return result;
 }
 
+// A successful result that leaves most points out is almost always a parameter set too tight: say so,
+// since nothing else would (the status is DBRG_OK). Empty when the surface uses at least half the points.
+void left_out_warning(const dbrg_stats& stats, const dbrg_params& params, char* text, size_t capacity) {
+    text[0] = '\0';
+    if (stats.vertices_used >= stats.unique_points / 2) return;
+    const int length = snprintf(text, capacity, "warning: only %u of %u distinct points are in the surface",
+                                stats.vertices_used, stats.unique_points);
+    if (stats.rejected_boundary > 0 && length > 0 && size_t(length) < capacity) {
+        snprintf(text + length, capacity - size_t(length),
+                 "; the open-surface test refused %llu candidates (boundary_factor %g is tight; the default is 3)",
+                 static_cast<unsigned long long>(stats.rejected_boundary), params.boundary_factor);
+    }
+}
+
 } // namespace
 
 // Result objects hold their arrays in a Memory built on the caller's allocator, so they outlive the call,
@@ -185,11 +199,13 @@ DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_para
     const dbrg_status status = reconstruct_surface(points, context, mesh->surface);
     if (status != DBRG_OK) mesh->surface = SurfaceResult(mesh->memory);
     mesh->memory.count_in(nullptr);
-    mesh->record(status, status == DBRG_OK ? "" : context.message());
     mesh->point_count = status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
     mesh->stats = context.stats;
     mesh->stats.seconds_total = seconds_now() - start;
     mesh->stats.peak_bytes = meter.peak;
+    char warning[sizeof mesh->message];
+    if (status == DBRG_OK) left_out_warning(mesh->stats, params, warning, sizeof warning);
+    mesh->record(status, status == DBRG_OK ? warning : context.message());
     return status;
 }
 

@@ -24,10 +24,10 @@
 #include <stdint.h>
 
 #define DBRG_VERSION_MAJOR 0
-#define DBRG_VERSION_MINOR 2
+#define DBRG_VERSION_MINOR 3
 #define DBRG_VERSION_PATCH 0
 #define DBRG_VERSION_NUMBER (DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH)
-#define DBRG_VERSION_STRING "0.2.0"
+#define DBRG_VERSION_STRING "0.3.0"
 
 #if defined(_WIN32) && defined(DBRG_SHARED_BUILD)
 #define DBRG_API __declspec(dllexport)
@@ -262,8 +262,10 @@ DBRG_API void dbrg_mesh_destroy(dbrg_mesh* mesh);
 /* Returns the status of the call that made `mesh` (DBRG_ERR_INVALID_ARGUMENT for NULL). */
 DBRG_API dbrg_status dbrg_mesh_status(const dbrg_mesh* mesh);
 
-/* Returns a NUL-terminated sentence on what went wrong, or "" on success. Valid until the mesh is
- * destroyed. mesh may be NULL (returns ""). */
+/* Returns a NUL-terminated sentence on what went wrong. On success it is "" or, from version 0.3.0 on, a
+ * warning that begins with "warning: " (the surface leaves more than half of the distinct points out,
+ * usually because a parameter is set too tight). Valid until the mesh is destroyed. mesh may be NULL
+ * (returns ""). */
 DBRG_API const char* dbrg_mesh_message(const dbrg_mesh* mesh);
 
 /* Returns the number of input points the triangle indices refer to (0 for NULL). */

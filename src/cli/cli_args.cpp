@@ -1,11 +1,11 @@
 // Command-line helpers shared by the subcommands: option parsing, exit codes, error lines, output files.
 #include "cli/cli_args.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
-#include <cstring>
+
+#include "io/file_output.h"
 
 namespace dbrg::cli {
 
@@ -74,17 +74,17 @@ bool parse_args(int argc, char** argv, const std::vector<OptionSpec>& options, P
 }
 
 bool write_text_output(const std::string& path, const std::string& text, std::string& error) {
-    const bool to_stdout = path.empty() || path == "-";
-    std::FILE* file = to_stdout ? stdout : std::fopen(path.c_str(), "wb");
-    if (!file) {
-        error = path + ": " + std::strerror(errno);
-        return false;
-    }
-    const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-    const bool closed = to_stdout ? std::fflush(file) == 0 : std::fclose(file) == 0;
-    if (!written || !closed) {
-        error = (to_stdout ? std::string("standard output") : path) + ": write error";
-        return false;
+    const io::IoStatus status = io::write_file(path.empty() ? "-" : path, text);
+    if (!status) error = status.message;
+    return status.ok;
+}
+
+bool check_outputs(const std::vector<std::string>& outputs, const std::string& input, std::string& error) {
+    for (const std::string& output : outputs) {
+        if (output.empty() || output == "-") continue;
+        if (!input.empty() && io::same_file(output, input)) return error = output + ": is the input file; choose another output", false;
+        const io::IoStatus status = io::check_output_path(output);
+        if (!status) return error = status.message, false;
     }
     return true;
 }

@@ -42,8 +42,13 @@ bool parse_number(const std::string& text, double& value);
 // A whole number in 0 .. 2^32 - 1, the whole text; false otherwise.
 bool parse_count(const std::string& text, uint32_t& value);
 
-// Writes `text` to the file at `path`, or to stdout when path is empty or "-". Returns false with a
-// message in `error` when the file cannot be written.
+// Writes `text` to the file at `path` (a failed write leaves the old file untouched), or to stdout when
+// path is empty or "-". Returns false with a message in `error` when the file cannot be written.
 bool write_text_output(const std::string& path, const std::string& text, std::string& error);
+
+// Checks, before any work, that each of `outputs` (empty and "-" are standard output) can be written and
+// none is the file `input` (compared by device and inode, so other spellings of its path are caught too).
+// Returns false with a message in `error` naming the first one that cannot.
+bool check_outputs(const std::vector<std::string>& outputs, const std::string& input, std::string& error);
 
 } // namespace dbrg::cli

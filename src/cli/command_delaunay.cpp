@@ -28,16 +28,16 @@ const char* const DELAUNAY_USAGE =
     "  -h, --help                show this help\n";
 
 bool write_tets(const std::string& path, const dbrg_tetrahedralization* tets, std::string& error) {
-    std::FILE* file = std::fopen(path.c_str(), "w");
-    if (!file) return error = "cannot write '" + path + "'", false;
     const uint32_t* vertices = dbrg_tetrahedralization_tets(tets);
     const uint32_t count = dbrg_tetrahedralization_tet_count(tets);
+    std::string text;
+    char line[64];
     for (uint32_t t = 0; t < count; ++t) {
-        std::fprintf(file, "%u %u %u %u\n", vertices[4 * t], vertices[4 * t + 1], vertices[4 * t + 2], vertices[4 * t + 3]);
+        const int length = std::snprintf(line, sizeof line, "%u %u %u %u\n", vertices[4 * t], vertices[4 * t + 1],
+                                         vertices[4 * t + 2], vertices[4 * t + 3]);
+        text.append(line, size_t(length));
     }
-    const bool ok = std::fclose(file) == 0;
-    if (!ok) error = "cannot write '" + path + "'";
-    return ok;
+    return write_text_output(path, text, error);
 }
 
 } // namespace
@@ -68,6 +68,10 @@ int run_delaunay(int argc, char** argv) {
         return report_error(EXIT_USAGE, "delaunay: --threads takes a whole number");
     }
 
+    if (!check_outputs({args.value("--stats-json"), args.value("--tets")}, args.positional[0], error)) {
+        return report_error(EXIT_FAILED, "delaunay: " + error);
+    }
+
     io::MeshData mesh;
     const io::IoStatus read = io::read_mesh(args.positional[0], mesh);
     if (!read) return report_error(EXIT_FAILED, read.message);
@@ -89,8 +93,9 @@ int run_delaunay(int argc, char** argv) {
         .add_string("backend", backend)
         .add_number("seconds", seconds)
         .add_unsigned("peak_rss_bytes", peak_rss_bytes());
-    bool ok = write_text_output(args.value("--stats-json"), json.str() + "\n", error);
-    if (ok && args.has("--tets")) ok = write_tets(args.value("--tets"), tets, error);
+    // The tetrahedra first: a report on standard output promises a run that succeeded.
+    bool ok = !args.has("--tets") || write_tets(args.value("--tets"), tets, error);
+    if (ok) ok = write_text_output(args.value("--stats-json"), json.str() + "\n", error);
     dbrg_tetrahedralization_destroy(tets);
     return ok ? EXIT_OK : report_error(EXIT_FAILED, error);
 }

@@ -2,7 +2,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
@@ -20,19 +22,21 @@ const char* const RECONSTRUCT_USAGE =
     "usage: dbrg reconstruct INPUT -o OUTPUT [options]\n"
     "       dbrg reconstruct --demo [--demo-shape NAME] [--demo-points N] -o OUTPUT [options]\n"
     "\n"
-    "Reconstructs an oriented manifold triangle surface through the points of INPUT (.ply .obj .off .xyz\n"
-    ".pts; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with every\n"
-    "input point as a vertex, in input order.\n"
+    "Reconstructs an oriented manifold triangle surface through the points of INPUT (.ply .obj .off .stl\n"
+    ".xyz .pts; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with\n"
+    "every input point as a vertex, in input order. OUTPUT is replaced only once it is completely written.\n"
     "\n"
     "  -o, --output FILE        the mesh to write (required)\n"
     "  --demo                   use a generated sample instead of INPUT\n"
     "  --demo-shape NAME        sphere, torus, double_torus (default), bumpy_sphere, hemisphere,\n"
-    "                           open_cylinder, saddle, cube\n"
-    "  --demo-points N          about N points (default 20000)\n"
+    "                           open_cylinder, saddle, cube, capped_cylinder, graded_sphere, thin_plate\n"
+    "  --demo-points N          about N points, evenly spaced (default 20000, at most 100000000)\n"
     "  --boundary-factor M      open-surface test: refuse triangles larger than M times the mean\n"
-    "                           circumradius; 0 turns it off (default 3)\n"
+    "                           circumradius; 0 turns it off, else M > 1 (default 3; below about 1.5\n"
+    "                           growing stops early and a warning says how many points were left out)\n"
     "  --boundary-mean local|global   the mean of that test: around the edge, or over the surface (default)\n"
-    "  --sliver-angle DEG       largest dihedral angle between neighbouring triangles (default 150)\n"
+    "  --sliver-angle DEG       largest dihedral angle between neighbouring triangles, in degrees,\n"
+    "                           strictly between 90 and 180 (default 150)\n"
     "  --no-fill-holes          leave the holes that growing could not close\n"
     "  --max-hole-edges N       holes with more boundary edges stay open (default 64)\n"
     "  --max-components N       surfaces grown from separate seeds, at most (default 64)\n"
@@ -46,6 +50,9 @@ const char* const RECONSTRUCT_USAGE =
     "  -q, --quiet              no progress bar\n"
     "  -h, --help               show this help\n";
 
+// A demo this large already needs tens of gigabytes; larger ones are better read from a file.
+const uint32_t MAX_DEMO_POINTS = 100000000;
+
 // Fills params from the options; returns false with a message for a malformed value.
 bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error) {
     dbrg_params_init(&params);
@@ -55,7 +62,10 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
         params.boundary_factor = number;
     }
     if (args.has("--sliver-angle")) {
-        if (!parse_number(args.value("--sliver-angle"), number)) return error = "--sliver-angle takes a number of degrees", false;
+        // Checked here in the user's unit: the library's own message speaks in radians.
+        if (!parse_number(args.value("--sliver-angle"), number) || !(number > 90 && number < 180)) {
+            return error = "--sliver-angle takes a number of degrees strictly between 90 and 180", false;
+        }
         params.sliver_angle = number * 3.14159265358979323846 / 180;
     }
     if (args.has("--boundary-mean")) {
@@ -88,22 +98,22 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
     return true;
 }
 
-// The input points: the file's vertices, or the demo sample.
-bool load_points(const ParsedArgs& args, io::MeshData& points, std::string& error) {
-    if (!args.has("--demo")) {
-        const io::IoStatus status = io::read_mesh(args.positional[0], points);
-        if (!status) error = status.message;
-        return status.ok;
-    }
+// The built-in sample asked for with --demo.
+struct Demo {
     samples::Shape shape = samples::Shape::double_torus;
-    if (args.has("--demo-shape") && !samples::shape_from_name(args.value("--demo-shape"), shape)) {
+    uint32_t points = 20000;
+};
+
+// Reads --demo-shape and --demo-points; returns false with a message for a malformed value.
+bool read_demo(const ParsedArgs& args, Demo& demo, std::string& error) {
+    if (args.has("--demo-shape") && !samples::shape_from_name(args.value("--demo-shape"), demo.shape)) {
         return error = "unknown --demo-shape '" + args.value("--demo-shape") + "'", false;
     }
-    uint32_t count = 20000;
-    if (args.has("--demo-points") && (!parse_count(args.value("--demo-points"), count) || count < 4)) {
-        return error = "--demo-points takes a whole number of at least 4", false;
+    if (args.has("--demo-points") &&
+        (!parse_count(args.value("--demo-points"), demo.points) || demo.points < 4 || demo.points > MAX_DEMO_POINTS)) {
+        return error = "--demo-points takes a whole number from 4 to " + std::to_string(MAX_DEMO_POINTS) +
+                       " (reconstruct a file for more)", false;
     }
-    points.positions = samples::sample(shape, count);
     return true;
 }
 
@@ -140,6 +150,7 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_unsigned("tetrahedra", s.tetrahedra)
         .add_unsigned("triangles", s.triangles)
         .add_unsigned("vertices_used", s.vertices_used)
+        .add_unsigned("unused_points", s.unique_points - s.vertices_used)
         .add_unsigned("boundary_edges", s.boundary_edges)
         .add_unsigned("boundary_loops", dbrg_mesh_boundary_loop_count(mesh))
         .add_unsigned("components", s.components)
@@ -200,21 +211,36 @@ int run_reconstruct(int argc, char** argv) {
     }
     if (!args.has("--output")) return report_error(EXIT_USAGE, "reconstruct: -o OUTPUT is required");
     const std::string output = args.value("--output");
-    if (!io::format_from_path(output)) {
-        return report_error(EXIT_USAGE, "reconstruct: cannot tell the format of '" + output + "' (use .ply .obj .off .stl)");
+    const std::optional<io::MeshFormat> format = io::format_from_path(output);
+    if (!format || *format == io::MeshFormat::xyz) {
+        return report_error(EXIT_USAGE, "reconstruct: " + (format ? "'" + output + "' would hold the points without the triangles"
+                                                                  : "cannot tell the format of '" + output + "'") +
+                                            " (use .ply .obj .off .stl)");
     }
     dbrg_params params;
-    if (!read_params(args, params, error)) return report_error(EXIT_USAGE, "reconstruct: " + error);
+    Demo demo;
+    if (!read_params(args, params, error) || (args.has("--demo") && !read_demo(args, demo, error))) {
+        return report_error(EXIT_USAGE, "reconstruct: " + error);
+    }
+    io::MeshData mesh;
+    SnapshotFiles snapshots{&mesh, output, 0, {}};
+    std::vector<std::string> outputs = {output, args.value("--stats-json")};
+    for (uint32_t k = 1; k <= params.snapshot_count; ++k) outputs.push_back(snapshots.path(k));
+    const std::string input = args.has("--demo") ? "" : args.positional[0];
+    if (!check_outputs(outputs, input, error)) return report_error(EXIT_FAILED, "reconstruct: " + error);
 
     double start = seconds_now();
-    io::MeshData mesh;
-    if (!load_points(args, mesh, error)) return report_error(EXIT_FAILED, error);
+    if (args.has("--demo")) {
+        mesh.positions = samples::sample(demo.shape, demo.points);
+    } else {
+        const io::IoStatus read = io::read_mesh(input, mesh);
+        if (!read) return report_error(EXIT_FAILED, read.message);
+    }
     const double seconds_read = seconds_now() - start;
 
     ProgressBar bar(!args.has("--quiet"));
     params.progress = ProgressBar::callback;
     params.progress_user = &bar;
-    SnapshotFiles snapshots{&mesh, output, 0, {}};
     if (params.snapshot_count > 0) {
         params.snapshot = SnapshotFiles::write;
         params.snapshot_user = &snapshots;
@@ -249,6 +275,8 @@ int run_reconstruct(int argc, char** argv) {
         summary_ok = write_text_output(args.value("--stats-json"), stats_json(stats, result, seconds_read, seconds_write),
                                        summary_error);
     }
+    // On success the library's message is empty or a warning (e.g. most points left out of the surface).
+    if (*dbrg_mesh_message(result)) std::fprintf(stderr, "dbrg: %s\n", dbrg_mesh_message(result));
     if (!args.has("--quiet") && written) {
         std::fprintf(stderr, "dbrg: %u points -> %u triangles, %u boundary loops in %.3f s; wrote %s\n",
                      stats.input_points, stats.triangles, dbrg_mesh_boundary_loop_count(result), stats.seconds_total,

@@ -49,6 +49,8 @@ int run_stats(int argc, char** argv) {
                                                                 : "stats: expected one mesh file, got " + std::to_string(args.positional.size()));
     }
 
+    if (!check_outputs({args.value("--output")}, args.positional[0], error)) return report_error(EXIT_FAILED, "stats: " + error);
+
     io::MeshData mesh;
     io::IoStatus status = io::read_mesh(args.positional[0], mesh);
     if (!status) return report_error(EXIT_FAILED, status.message);

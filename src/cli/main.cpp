@@ -1,6 +1,7 @@
 // The dbrg program: dispatches to its subcommands and answers --help and --version.
 #include <cstdio>
-#include <cstring>
+#include <exception>
+#include <new>
 #include <string>
 
 #include "cli/cli_args.h"
@@ -14,11 +15,10 @@ using dbrg::cli::EXIT_USAGE;
 
 struct Command {
     const char* name;
-    int (*run)(int argc, char** argv);  // nullptr: not part of this build yet
+    int (*run)(int argc, char** argv);
     const char* synopsis;
 };
 
-// To connect a command, put its run_ function in place of nullptr.
 const Command COMMANDS[] = {
     {"reconstruct", dbrg::cli::run_reconstruct, "INPUT -o OUTPUT [options]   reconstruct a surface from a point cloud"},
     {"delaunay", dbrg::cli::run_delaunay, "INPUT [options]              Delaunay tetrahedralization of a point cloud"},
@@ -42,7 +42,9 @@ void print_usage(std::FILE* stream) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
     if (argc < 2) {
         print_usage(stderr);
         return EXIT_USAGE;
@@ -58,8 +60,21 @@ int main(int argc, char** argv) {
     }
     for (const Command& command : COMMANDS) {
         if (first != command.name) continue;
-        if (!command.run) return dbrg::cli::report_error(EXIT_USAGE, "'" + first + "' is not available in this build yet");
         return command.run(argc - 1, argv + 1);
     }
     return dbrg::cli::report_error(EXIT_USAGE, "unknown command '" + first + "' (see 'dbrg --help')");
+}
+
+} // namespace
+
+// The library reports through statuses, but the program's own containers can still throw (a huge demo,
+// a huge file): every way out of the program is a message and a non-zero exit, never an abort.
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::bad_alloc&) {
+        return dbrg::cli::report_error(dbrg::cli::EXIT_FAILED, "out of memory");
+    } catch (const std::exception& error) {
+        return dbrg::cli::report_error(dbrg::cli::EXIT_FAILED, std::string("unexpected error: ") + error.what());
+    }
 }

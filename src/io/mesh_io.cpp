@@ -11,6 +11,7 @@
 
 #include <sys/stat.h>
 
+#include "io/file_output.h"
 #include "io/formats.h"
 
 namespace dbrg::io {
@@ -139,19 +140,9 @@ IoStatus write_mesh_buffer(const MeshData& mesh, MeshFormat format, std::string&
 
 IoStatus write_mesh(const std::string& path, const MeshData& mesh, MeshFormat format) {
     std::string bytes;
-    IoStatus status = write_mesh_buffer(mesh, format, bytes);
-    if (status) {
-        std::FILE* file = std::fopen(path.c_str(), "wb");
-        if (!file) {
-            status = IoStatus::failure(std::strerror(errno));
-        } else {
-            const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-            const bool closed = std::fclose(file) == 0;
-            if (!written || !closed) status = IoStatus::failure("write error (disk full?)");
-        }
-    }
-    if (!status) status.message = path + ": " + status.message;
-    return status;
+    const IoStatus status = write_mesh_buffer(mesh, format, bytes);
+    if (!status) return IoStatus::failure(path + ": " + status.message);
+    return write_file(path, bytes);
 }
 
 IoStatus write_mesh(const std::string& path, const MeshData& mesh) {

@@ -59,8 +59,9 @@ IoStatus read_mesh(const std::string& path, MeshData& out);
 // are decoded, dropping the zero-area triangles strips use to join their pieces.
 IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, MeshData& out);
 
-// Writes `mesh` to `path` as `format`. Positions round-trip exactly through every format except STL,
-// which stores float32 (exact for coordinates that are floats already). XYZ writes the points only.
+// Writes `mesh` to `path` as `format`, through write_file (file_output.h): a failed write leaves the file
+// that was there untouched. Positions round-trip exactly through every format except STL, which stores
+// float32 (exact for coordinates that are floats already). XYZ writes the points only.
 IoStatus write_mesh(const std::string& path, const MeshData& mesh, MeshFormat format);
 
 // As write_mesh, with the format chosen by the extension of `path`.

@@ -1,0 +1,219 @@
+"""The dbrg program's files and exits: outputs replaced only when completely written, outputs checked before
+any work, no abort, and the messages a user reads. Usage: python3 test_cli_files.py PATH_TO_DBRG"""
+import os
+import resource
+import signal
+import stat
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+
+DBRG = None
+
+
+def run(*args, limit_file_bytes=None, limit_memory_bytes=None, timeout=120):
+    """Runs dbrg; returns (exit code, stdout, stderr). Limits apply to the child only."""
+    def limits():
+        if limit_file_bytes is not None:
+            # A write past the limit fails with EFBIG, as on a full disk, instead of killing the process.
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (limit_file_bytes, limit_file_bytes))
+        if limit_memory_bytes is not None:
+            resource.setrlimit(resource.RLIMIT_AS, (limit_memory_bytes, limit_memory_bytes))
+    done = subprocess.run([DBRG, *args], capture_output=True, text=True, timeout=timeout, preexec_fn=limits)
+    return done.returncode, done.stdout, done.stderr
+
+
+class Folder(unittest.TestCase):
+    def setUp(self):
+        self.folder = tempfile.TemporaryDirectory()
+        self.dir = self.folder.name
+
+    def tearDown(self):
+        self.folder.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def demo(self, output, points=2000, *extra):
+        return run("reconstruct", "--demo", "--demo-points", str(points), "-q", "-o", output, *extra)
+
+    def assert_no_temporaries(self):
+        self.assertEqual([name for name in os.listdir(self.dir) if name.startswith(".")], [])
+
+
+class FailedWrites(Folder):
+    """A write that fails (here: a file size limit, as a full disk) leaves the old file as it was."""
+
+    def test_failed_mesh_write_keeps_the_old_file(self):
+        target = self.path("prev.ply")
+        self.assertEqual(self.demo(target)[0], 0)
+        os.chmod(target, 0o640)
+        with open(target, "rb") as f:
+            before = f.read()
+        code, _, err = run("reconstruct", "--demo", "--demo-points", "6000", "-q", "-o", target,
+                           limit_file_bytes=len(before) // 2)
+        self.assertEqual(code, 1)
+        self.assertIn("prev.ply", err)
+        self.assertIn("File too large", err)
+        with open(target, "rb") as f:
+            self.assertEqual(f.read(), before)
+        self.assertEqual(stat.S_IMODE(os.stat(target).st_mode), 0o640)
+        self.assert_no_temporaries()
+
+    def test_replaced_file_keeps_its_permissions(self):
+        target = self.path("prev.obj")
+        self.assertEqual(self.demo(target)[0], 0)
+        os.chmod(target, 0o604)
+        self.assertEqual(self.demo(target, 3000)[0], 0)
+        self.assertEqual(stat.S_IMODE(os.stat(target).st_mode), 0o604)
+        self.assert_no_temporaries()
+
+    def test_failed_stats_json_write_keeps_the_old_file(self):
+        stats = self.path("stats.json")
+        with open(stats, "w") as f:
+            f.write("{}\n" * 4000)
+        code, _, err = run("reconstruct", "--demo", "--demo-points", "2000", "-q", "-o", self.path("x.off"),
+                           "--stats-json", stats, limit_file_bytes=1000)
+        self.assertEqual(code, 1)
+        with open(stats) as f:
+            self.assertEqual(f.read(), "{}\n" * 4000)
+        self.assert_no_temporaries()
+
+    def test_a_fifo_is_written_directly(self):
+        fifo = self.path("stats.json")
+        os.mkfifo(fifo)
+        received = []
+        def read_all():
+            with open(fifo) as f:
+                received.append(f.read())
+        reader = threading.Thread(target=read_all)
+        reader.start()
+        code, _, _ = self.demo(self.path("x.ply"), 2000, "--stats-json", fifo)
+        reader.join(60)
+        self.assertEqual(code, 0)
+        self.assertIn('"triangles"', received[0])
+        self.assertTrue(stat.S_ISFIFO(os.stat(fifo).st_mode))
+
+
+class OutputsCheckedFirst(Folder):
+    """Outputs that cannot be written are refused before the input is even read."""
+
+    def test_missing_folder(self):
+        code, _, err = run("reconstruct", self.path("no-such-input.xyz"), "-o", self.path("none/x.ply"))
+        self.assertEqual(code, 1)
+        self.assertIn("none/x.ply", err)
+        self.assertIn("No such file or directory", err)
+        self.assertNotIn("no-such-input", err)
+
+    def test_output_is_a_folder(self):
+        os.mkdir(self.path("d.ply"))
+        code, _, err = self.demo(self.path("d.ply"))
+        self.assertEqual(code, 1)
+        self.assertIn("is a folder", err)
+
+    def test_read_only_folder(self):
+        if os.geteuid() == 0:
+            self.skipTest("root writes into read-only folders")
+        os.chmod(self.dir, 0o500)
+        try:
+            code, _, err = self.demo(self.path("x.ply"))
+        finally:
+            os.chmod(self.dir, 0o700)
+        self.assertEqual(code, 1)
+        self.assertIn("Permission denied", err)
+
+    def test_delaunay_tets_names_the_reason_and_prints_no_report(self):
+        points = self.path("p.xyz")
+        with open(points, "w") as f:
+            f.write("0 0 0\n1 0 0\n0 1 0\n0 0 1\n")
+        code, out, err = run("delaunay", points, "--tets", self.path("none/t.txt"))
+        self.assertEqual(code, 1)
+        self.assertEqual(out, "")
+        self.assertIn("No such file or directory", err)
+        code, out, _ = run("delaunay", points, "--tets", self.path("t.txt"))
+        self.assertEqual(code, 0)
+        self.assertIn('"tetrahedra": 1,', out)
+        with open(self.path("t.txt")) as f:
+            self.assertEqual(sorted(int(i) for i in f.read().split()), [0, 1, 2, 3])
+
+    def test_stats_output_checked(self):
+        mesh = self.path("m.off")
+        self.assertEqual(self.demo(mesh)[0], 0)
+        code, _, err = run("stats", mesh, "-o", self.path("none/s.json"))
+        self.assertEqual(code, 1)
+        self.assertIn("No such file or directory", err)
+
+
+class RefusedOutputs(Folder):
+    def test_xyz_cannot_hold_triangles(self):
+        code, _, err = self.demo(self.path("x.xyz"))
+        self.assertEqual(code, 2)
+        self.assertIn("without the triangles", err)
+        self.assertFalse(os.path.exists(self.path("x.xyz")))
+
+    def test_output_that_is_the_input(self):
+        source = self.path("in.ply")
+        self.assertEqual(self.demo(source)[0], 0)
+        with open(source, "rb") as f:
+            before = f.read()
+        os.link(source, self.path("alias.ply"))
+        for output in (source, os.path.join(self.dir, ".", "in.ply"), self.path("alias.ply")):
+            code, _, err = run("reconstruct", source, "-q", "-o", output)
+            self.assertEqual(code, 1, output)
+            self.assertIn("is the input file", err)
+        code, _, err = run("reconstruct", source, "-q", "-o", self.path("out.ply"), "--stats-json", source)
+        self.assertEqual(code, 1)
+        self.assertIn("is the input file", err)
+        with open(source, "rb") as f:
+            self.assertEqual(f.read(), before)
+
+
+class NeverAbort(Folder):
+    def test_demo_points_bounded(self):
+        code, _, err = run("reconstruct", "--demo", "--demo-points", "4294967295", "-o", self.path("x.ply"))
+        self.assertEqual(code, 2)
+        self.assertIn("--demo-points takes a whole number from 4 to", err)
+
+    @unittest.skipIf(os.environ.get("DBRG_SANITIZED") == "1", "sanitizers reserve more address space than the limit")
+    def test_out_of_memory_is_a_message(self):
+        # 100 million demo points need gigabytes; with 1 GiB of address space the sample cannot be made.
+        code, _, err = run("reconstruct", "--demo", "--demo-points", "100000000", "-q", "-o", self.path("x.ply"),
+                           limit_memory_bytes=1 << 30)
+        self.assertEqual(code, 1, err)
+        self.assertIn("out of memory", err)
+        self.assertGreater(code, 0)  # a signal would be negative
+
+
+class Messages(Folder):
+    def test_tight_boundary_factor_warns(self):
+        code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "2000",
+                           "--boundary-factor", "1.1", "-q", "-o", self.path("s.ply"),
+                           "--stats-json", self.path("s.json"))
+        self.assertEqual(code, 0)
+        self.assertIn("warning: only", err)
+        self.assertIn("boundary_factor", err)
+        with open(self.path("s.json")) as f:
+            self.assertRegex(f.read(), r'"unused_points": [1-9]')
+        code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "2000", "-q",
+                           "-o", self.path("s.ply"))
+        self.assertEqual((code, err), (0, ""))
+
+    def test_sliver_angle_in_degrees(self):
+        code, _, err = self.demo(self.path("s.ply"), 2000, "--sliver-angle", "200")
+        self.assertEqual(code, 2)
+        self.assertIn("degrees strictly between 90 and 180", err)
+        self.assertNotIn("radian", err)
+
+    def test_help_lists_every_input_format(self):
+        code, out, _ = run("reconstruct", "--help")
+        self.assertEqual(code, 0)
+        for extension in (".ply", ".obj", ".off", ".stl", ".xyz", ".pts"):
+            self.assertIn(extension, out.split("writes it")[0])
+
+
+if __name__ == "__main__":
+    DBRG = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
