@@ -184,3 +184,28 @@ TEST_CASE("outliers: a few stray points far from the surface do not break it") {
                                        << (report.genus ? std::to_string(*report.genus) : "-"));
     CHECK(report.components == 1);
 }
+
+TEST_CASE("a successful result that leaves most points out carries a warning, and only then") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
+    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    dbrg_params params;
+    dbrg_params_init(&params);
+    for (double factor : {1.1, 3.0}) {
+        CAPTURE(factor);
+        params.boundary_factor = factor;
+        dbrg_mesh* mesh = nullptr;
+        REQUIRE(dbrg_reconstruct(&points, &params, &mesh) == DBRG_OK);
+        dbrg_stats stats;
+        stats.struct_size = sizeof stats;
+        REQUIRE(dbrg_mesh_stats(mesh, &stats) == DBRG_OK);
+        const std::string message = dbrg_mesh_message(mesh);
+        const bool most_left_out = stats.vertices_used < stats.unique_points / 2;
+        CHECK(most_left_out == (factor < 2));
+        CHECK(message.empty() == !most_left_out);
+        if (most_left_out) {
+            CHECK(message.rfind("warning: only " + std::to_string(stats.vertices_used) + " of ", 0) == 0);
+            CHECK(message.find("boundary_factor") != std::string::npos);
+        }
+        dbrg_mesh_destroy(mesh);
+    }
+}

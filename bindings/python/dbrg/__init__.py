@@ -19,6 +19,7 @@ import ctypes
 import operator
 import signal
 import threading
+import warnings
 
 import numpy as np
 
@@ -301,15 +302,18 @@ class Mesh:
     stats          dict of every dbrg_stats field (counts, rejections by rule, seconds per stage,
                    peak_bytes), except struct_size.
     point_count    the number of input points the indices refer to.
+    warning        "" or the library's warning about a result that leaves most points out (also
+                   issued as a RuntimeWarning by reconstruct()).
     """
 
-    __slots__ = ("triangles", "boundary_loops", "stats", "point_count")
+    __slots__ = ("triangles", "boundary_loops", "stats", "point_count", "warning")
 
-    def __init__(self, triangles, boundary_loops, stats, point_count):
+    def __init__(self, triangles, boundary_loops, stats, point_count, warning=""):
         self.triangles = triangles
         self.boundary_loops = boundary_loops
         self.stats = stats
         self.point_count = point_count
+        self.warning = warning
 
     def __repr__(self):
         return "<dbrg.Mesh: %d triangles over %d points, %d boundary loops>" % (
@@ -339,7 +343,8 @@ def _mesh(lib, handle):
         length = ctypes.c_uint32()
         pointer = lib.dbrg_mesh_boundary_loop(handle, loop, ctypes.byref(length))
         loops.append(_copy_u32(pointer, length.value))
-    return Mesh(triangles, loops, _stats_dict(lib, handle), lib.dbrg_mesh_point_count(handle))
+    warning = lib.dbrg_mesh_message(handle).decode("utf-8", "replace")
+    return Mesh(triangles, loops, _stats_dict(lib, handle), lib.dbrg_mesh_point_count(handle), warning)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -384,7 +389,10 @@ def reconstruct(points, *, sliver_angle=None, boundary_factor=None, boundary_mea
         watcher.raise_pending()
         if status != _OK:
             raise _error(lib, status, lib.dbrg_mesh_message(handle) if handle else b"")
-        return _mesh(lib, handle)
+        mesh = _mesh(lib, handle)
+        if mesh.warning:
+            warnings.warn(mesh.warning, RuntimeWarning, stacklevel=2)
+        return mesh
     finally:
         lib.dbrg_mesh_destroy(handle)
 

@@ -3,6 +3,7 @@
 import ctypes
 import math
 import unittest
+import warnings
 
 import numpy as np
 
@@ -168,6 +169,14 @@ class Parameters(unittest.TestCase):
         mesh = dbrg.reconstruct(SPHERE, boundary_factor=0, sliver_angle=math.radians(160), fill_holes=False,
                                 boundary_mean="global", max_components=1, threads=2)
         self.assertEqual(manifold_problems(mesh.triangles, allow_boundary=False), [])
+
+    def test_a_tight_boundary_factor_warns_and_the_default_does_not(self):
+        with self.assertWarnsRegex(RuntimeWarning, "warning: only .*boundary_factor"):
+            mesh = dbrg.reconstruct(SPHERE, boundary_factor=1.001)
+        self.assertTrue(mesh.warning.startswith("warning: only"))
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            self.assertEqual(dbrg.reconstruct(SPHERE).warning, "")
 
     def test_out_of_range_values_name_the_parameter(self):
         cases = {

@@ -531,6 +531,17 @@ impl Mesh {
         (0..self.boundary_loop_count()).map(move |index| self.boundary_loop(index).unwrap_or(&[]))
     }
 
+    /// The library's warning about this result (it leaves more than half of the points out, usually a
+    /// parameter set too tight), or `None`.
+    pub fn warning(&self) -> Option<String> {
+        let message = unsafe { owned_string(sys::dbrg_mesh_message(self.raw.as_ptr())) };
+        if message.is_empty() {
+            None
+        } else {
+            Some(message)
+        }
+    }
+
     /// The figures of the call that made this mesh.
     pub fn stats(&self) -> Stats {
         let mut stats = Stats { struct_size: std::mem::size_of::<Stats>(), ..Stats::default() };

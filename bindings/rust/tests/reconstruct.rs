@@ -29,6 +29,18 @@ fn fibonacci_sphere_is_a_closed_oriented_genus_zero_surface() {
 }
 
 #[test]
+fn a_tight_boundary_factor_warns_and_the_default_does_not() {
+    let points = fibonacci_sphere(400);
+    assert_eq!(dbrg::reconstruct(&points, &Params::default()).expect("reconstruct").warning(), None);
+    let mut tight = Params::default();
+    tight.boundary_factor = 1.001;
+    let mesh = dbrg::reconstruct(&points, &tight).expect("reconstruct");
+    let warning = mesh.warning().expect("a warning");
+    assert!(warning.starts_with("warning: only"), "{}", warning);
+    assert!(warning.contains("boundary_factor"), "{}", warning);
+}
+
+#[test]
 fn f32_input_gives_a_closed_sphere() {
     let points: Vec<[f32; 3]> = fibonacci_sphere(400).iter().map(|p| [p[0] as f32, p[1] as f32, p[2] as f32]).collect();
     let mesh = dbrg::reconstruct(&points, &Params::default()).expect("reconstruct f32");
