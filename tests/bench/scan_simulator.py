@@ -124,6 +124,7 @@ def read_ply(path):
 
 
 def strip_triangles(corners):
+    """The triangles of PLY triangle strips, turned alike; a negative index starts a new strip."""
     triangles, strip = [], []
     for index in corners:
         if index < 0:
@@ -284,9 +285,6 @@ class Scan:
     side: float  # the mesh's mean side length s
     low: np.ndarray  # the mesh's bounding box
     high: np.ndarray
-
-    def points(self):
-        return self.eyes[self.view] + self.ranges[:, None] * self.directions
 
 
 @dataclass
