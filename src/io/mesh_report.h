@@ -19,7 +19,8 @@
 // - `euler_characteristic` = vertices - edges + proper faces, with `vertices` the vertices of proper faces.
 // - `genus` is known only when the mesh has faces and is closed (no boundary edge), manifold (no
 //   non-manifold edge or vertex) and oriented; it is then the sum over components of (2 - chi_c) / 2.
-// - Degenerate faces have a repeated index or an exactly zero cross product of two edge vectors.
+// - Degenerate faces have a repeated index or three collinear corners (zero area), decided exactly for
+//   finite coordinates of any size; a face with a NaN or infinite coordinate is not of zero area.
 //   Duplicate faces use the same three vertices as an earlier face, in any order.
 #pragma once
 
