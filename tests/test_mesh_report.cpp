@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -292,6 +293,14 @@ void add_triangle(MeshData& mesh, std::initializer_list<double> corners) {
     mesh.triangles.insert(mesh.triangles.end(), {first, first + 1, first + 2});
 }
 
+MeshReport welded_report_of(const MeshData& mesh) {
+    MeshReport report;
+    const IoStatus status = make_mesh_report(mesh, report, VertexIdentity::position);
+    INFO(status.message);
+    REQUIRE(status.ok);
+    return report;
+}
+
 // Every figure of the mesh's shape: all but how its vertices were told apart.
 void check_same_shape(const MeshReport& a, const MeshReport& b) {
     CHECK(a.faces == b.faces);
@@ -421,6 +430,10 @@ TEST_CASE("empty meshes and isolated vertices") {
     CHECK(empty.components == 0);
     CHECK(empty.oriented);
     CHECK_FALSE(empty.genus);
+    const MeshReport empty_welded = welded_report_of(MeshData());
+    CHECK(empty_welded.vertices_welded);
+    CHECK(empty_welded.faces == 0);
+    CHECK(empty_welded.duplicate_positions == 0);
     MeshData mesh = tetrahedron();
     mesh.positions.insert(mesh.positions.end(), {9, 9, 9, 8, 8, 8});
     const MeshReport r = report_of(mesh);
@@ -501,10 +514,97 @@ TEST_CASE("points used counts input points sitting at vertices of faces") {
     CHECK(*report.points_used == 4);
 }
 
+TEST_CASE("welding: a cube with a texture seam is closed by position") {
+    // The top face's corners (vertices 4-7) written again as vertices 8-11, which the top's two triangles use.
+    const MeshData closed = cube();
+    MeshData seam = closed;
+    seam.positions.insert(seam.positions.end(), closed.positions.begin() + 3 * 4, closed.positions.end());
+    for (size_t corner = 6; corner < 12; ++corner) seam.triangles[corner] += 4;
+    const MeshReport by_index = report_of(seam);
+    CHECK_FALSE(by_index.vertices_welded);
+    CHECK(by_index.duplicate_positions == 4);
+    CHECK(by_index.edges_boundary > 0);
+    CHECK(by_index.boundary_loops == 2);  // the rim of the top and that of the open box
+    CHECK(by_index.components == 2);
+    CHECK_FALSE(by_index.genus);
+
+    const MeshReport by_position = welded_report_of(seam);
+    CHECK(by_position.vertices_welded);
+    CHECK(by_position.duplicate_positions == 4);
+    CHECK(by_position.edges_boundary == 0);
+    REQUIRE(by_position.genus);
+    CHECK(*by_position.genus == 0);
+    check_same_shape(by_position, report_of(closed));
+}
+
+TEST_CASE("welding a triangle soup gives back the mesh it was cut from") {
+    for (const MeshData& mesh : {tetrahedron(), cube(), torus(7, 5), moebius_strip(9), grid(3)}) {
+        // Every corner of every face a vertex of its own, as STL stores a mesh.
+        MeshData soup = make_mesh({}, {});
+        for (uint32_t index : mesh.triangles) {
+            soup.triangles.push_back(static_cast<uint32_t>(soup.vertex_count()));
+            soup.positions.insert(soup.positions.end(), &mesh.positions[3 * size_t(index)], &mesh.positions[3 * size_t(index)] + 3);
+        }
+        const MeshReport pieces = report_of(soup);
+        CHECK(pieces.components == mesh.triangle_count());
+        CHECK(pieces.edges_boundary == mesh.triangles.size());
+        CHECK(pieces.duplicate_positions == soup.vertex_count() - mesh.vertex_count());
+        const MeshReport welded = welded_report_of(soup);
+        CHECK(welded.duplicate_positions == pieces.duplicate_positions);
+        check_same_shape(welded, report_of(mesh));
+        // Nothing to weld: the same figures either way.
+        check_same_shape(welded_report_of(mesh), report_of(mesh));
+        CHECK(welded_report_of(mesh).duplicate_positions == 0);
+    }
+}
+
+TEST_CASE("welding: equal coordinates only, and faces whose corners merge are degenerate") {
+    const double nan = std::nan("");
+    MeshData mesh = tetrahedron();
+    mesh.positions.insert(mesh.positions.end(), {
+        -0.0, 0, -0.0,  // 4: vertex 0 again (-0 equals 0)
+        nan, 0, 0,      // 5, 6: NaN equals nothing, not even itself
+        nan, 0, 0,
+        1, 0, 0,        // 7: vertex 1 again, used by no face
+        1, 0, 1e-300,   // 8: close to vertex 1, but not at it
+    });
+    mesh.triangles.insert(mesh.triangles.end(), {0, 4, 1});  // by index a face of zero area on edge 0-1
+    const MeshReport by_index = report_of(mesh);
+    CHECK(by_index.duplicate_positions == 2);
+    CHECK(by_index.degenerate_faces == 1);
+    CHECK(by_index.edges_nonmanifold == 1);  // edge 0-1 has three faces
+    CHECK(by_index.vertices_isolated == 4);
+    const MeshReport by_position = welded_report_of(mesh);
+    CHECK(by_position.duplicate_positions == 2);
+    CHECK(by_position.degenerate_faces == 1);  // now (0, 0, 1): a repeated index, no part of the topology
+    CHECK(by_position.edges_nonmanifold == 0);
+    CHECK(by_position.vertices == 4);
+    CHECK(by_position.vertices_isolated == 3);  // 5, 6 and 8
+    REQUIRE(by_position.genus);
+    CHECK(*by_position.genus == 0);
+
+    // Two faces on the same positions become one face listed twice.
+    const MeshData twins = make_mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0}, {0, 1, 2, 3, 1, 2});
+    CHECK(report_of(twins).duplicate_faces == 0);
+    CHECK(welded_report_of(twins).duplicate_faces == 1);
+}
+
+TEST_CASE("JSON says whether vertices were welded") {
+    const MeshData mesh = make_mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0}, {0, 1, 2, 3, 1, 2});
+    const std::string by_index = to_json(report_of(mesh));
+    CHECK(by_index.find("\"vertices_welded\": false,") != std::string::npos);
+    CHECK(by_index.find("\"duplicate_positions\": 1,") != std::string::npos);
+    CHECK(by_index.find("vertices_merged") == std::string::npos);
+    const std::string by_position = to_json(welded_report_of(mesh));
+    CHECK(by_position.find("\"vertices_welded\": true,") != std::string::npos);
+    CHECK(by_position.find("\"vertices_merged\": 1,") != std::string::npos);
+    CHECK(by_position.find("duplicate_positions") == std::string::npos);
+}
+
 TEST_CASE("JSON has every key, genus null when unknown") {
     MeshReport report = report_of(grid(2));
     std::string json = to_json(report);
-    for (const char* key : {"faces", "vertices", "edges_manifold", "edges_boundary", "edges_nonmanifold", "vertices_nonmanifold",
+    for (const char* key : {"faces", "vertices", "vertices_welded", "duplicate_positions", "edges_manifold", "edges_boundary", "edges_nonmanifold", "vertices_nonmanifold",
                             "boundary_loops", "components", "oriented", "euler_characteristic", "genus", "degenerate_faces",
                             "duplicate_faces"}) {
         CAPTURE(key);
@@ -829,6 +929,22 @@ void check_against_naive(const MeshReport& r, const MeshData& mesh) {
     if (r.genus) CHECK(*r.genus == (2 * int64_t(n.components) - n.euler) / 2);
 }
 
+// The mesh with one vertex per distinct position, in order of first appearance (no NaN expected here).
+MeshData naively_welded(const MeshData& mesh) {
+    MeshData out = make_mesh({}, {});
+    std::map<std::array<double, 3>, uint32_t> number;
+    std::vector<uint32_t> renumbered;
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const std::array<double, 3> position = {mesh.positions[3 * v] + 0.0, mesh.positions[3 * v + 1] + 0.0,
+                                                mesh.positions[3 * v + 2] + 0.0};  // + 0.0 makes -0 into 0
+        const auto [at, added] = number.emplace(position, static_cast<uint32_t>(out.vertex_count()));
+        if (added) out.positions.insert(out.positions.end(), position.begin(), position.end());
+        renumbered.push_back(at->second);
+    }
+    for (uint32_t index : mesh.triangles) out.triangles.push_back(renumbered[index]);
+    return out;
+}
+
 } // namespace
 
 TEST_CASE("every mesh in ../shared/data matches the naive computation") {
@@ -857,6 +973,11 @@ TEST_CASE("every mesh in ../shared/data matches the naive computation") {
         figures.erase(std::unique(figures.begin(), figures.end(), [](char a, char b) { return a == ' ' && b == ' '; }), figures.end());
         MESSAGE(name << ": " << figures);
         check_against_naive(r, mesh);
+        // Welded: against the naive figures of the mesh welded through an ordered map.
+        const MeshData welded_naively = naively_welded(mesh);
+        const MeshReport welded = welded_report_of(mesh);
+        CHECK(welded.duplicate_positions == mesh.vertex_count() - welded_naively.vertex_count());
+        check_against_naive(welded, welded_naively);
         // Facts stated by the data's README.
         if (name == "rocker-arm.off") CHECK(r.genus == std::optional<int64_t>(1));
         if (name == "spot.obj") CHECK(r.genus == std::optional<int64_t>(0));

@@ -201,6 +201,45 @@ bool has_zero_area(const std::vector<double>& p, const uint32_t* corner) {
     return true;
 }
 
+// For each vertex, the first vertex of the array at exactly its position (itself when there is none
+// earlier). Coordinates compare as numbers: -0 equals 0, and a vertex with a NaN coordinate equals no other.
+std::vector<uint32_t> first_at_same_position(const MeshData& mesh) {
+    DenseIndex<Triple, TripleHash> positions(mesh.vertex_count());
+    std::vector<uint32_t> first_of_position;
+    std::vector<uint32_t> first(mesh.vertex_count());
+    for (uint32_t v = 0; v < mesh.vertex_count(); ++v) {
+        const double* p = &mesh.positions[3 * size_t(v)];
+        if (std::isnan(p[0]) || std::isnan(p[1]) || std::isnan(p[2])) {
+            first[v] = v;
+            continue;
+        }
+        bool new_position = false;
+        const uint32_t id = positions.insert(position_key(mesh.positions, v), &new_position);
+        if (new_position) first_of_position.push_back(v);
+        first[v] = first_of_position[id];
+    }
+    return first;
+}
+
+// `mesh` with every vertex replaced by the first vertex at its position (`first`, as first_at_same_position
+// gives it) and the others dropped; the vertices kept stay in their order.
+MeshData welded(const MeshData& mesh, const std::vector<uint32_t>& first) {
+    MeshData out;
+    out.has_faces = mesh.has_faces;
+    std::vector<uint32_t> new_index(mesh.vertex_count());
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        if (first[v] != v) {
+            new_index[v] = new_index[first[v]];  // first[v] < v: already numbered
+            continue;
+        }
+        new_index[v] = static_cast<uint32_t>(out.vertex_count());
+        out.positions.insert(out.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v] + 3);
+    }
+    out.triangles.reserve(mesh.triangles.size());
+    for (uint32_t index : mesh.triangles) out.triangles.push_back(new_index[index]);
+    return out;
+}
+
 // Per-edge record: how many proper faces use it and the first two of them with their directions.
 struct EdgeUse {
     uint32_t count = 0;
@@ -342,10 +381,19 @@ IoStatus guarded(Action&& action) {
 
 } // namespace
 
-IoStatus make_mesh_report(const MeshData& mesh, MeshReport& report) {
+IoStatus make_mesh_report(const MeshData& mesh, MeshReport& report, VertexIdentity identity) {
     IoStatus status = check_arrays(mesh, "mesh");
     if (!status) return status;
-    return guarded([&] { return compute(mesh, report); });
+    return guarded([&] {
+        const std::vector<uint32_t> first = first_at_same_position(mesh);
+        uint64_t duplicates = 0;
+        for (size_t v = 0; v < first.size(); ++v) duplicates += first[v] != v;
+        const bool weld = identity == VertexIdentity::position;
+        const IoStatus computed = weld && duplicates > 0 ? compute(welded(mesh, first), report) : compute(mesh, report);
+        report.vertices_welded = weld;
+        report.duplicate_positions = duplicates;
+        return computed;
+    });
 }
 
 IoStatus add_face_recall(const MeshData& mesh, const MeshData& reference, MeshReport& report) {
@@ -432,6 +480,8 @@ std::string to_json(const MeshReport& report) {
     json.add_unsigned("faces", report.faces)
         .add_unsigned("vertices", report.vertices)
         .add_unsigned("vertices_isolated", report.vertices_isolated)
+        .add_bool("vertices_welded", report.vertices_welded)
+        .add_unsigned(report.vertices_welded ? "vertices_merged" : "duplicate_positions", report.duplicate_positions)
         .add_unsigned("edges_manifold", report.edges_manifold)
         .add_unsigned("edges_boundary", report.edges_boundary)
         .add_unsigned("edges_nonmanifold", report.edges_nonmanifold)
