@@ -11,13 +11,20 @@ namespace dbrg::cli {
 namespace {
 
 const char* const STATS_USAGE =
-    "usage: dbrg stats MESH [--points INPUT] [--reference REF] [-o FILE]\n"
+    "usage: dbrg stats MESH [--weld] [--points INPUT] [--reference REF] [-o FILE]\n"
     "\n"
     "Prints a JSON report on the triangle mesh MESH (.ply .obj .off .stl): faces, vertices, manifold /\n"
     "boundary / non-manifold edges, non-manifold (bow-tie) vertices, boundary loops, components,\n"
     "orientation, Euler characteristic, genus (null unless the mesh is closed, manifold and oriented),\n"
-    "degenerate and duplicate faces. Vertices are told apart by index, not by position.\n"
+    "degenerate faces (a repeated vertex or zero area, decided exactly) and duplicate faces.\n"
+    "Vertices are told apart by index, as in the file; duplicate_positions counts the vertices at\n"
+    "exactly the position of an earlier one (files that split vertices along texture seams have them):\n"
+    "when it is not 0, open edges may be closed by position, which --weld shows.\n"
     "\n"
+    "  --weld             merge the vertices at exactly equal coordinates before measuring, so that\n"
+    "                     faces meeting at a repeated position count as joined; faces whose corners\n"
+    "                     merge count as degenerate. The report says vertices_welded: true and\n"
+    "                     vertices_merged (in place of duplicate_positions)\n"
     "  --points INPUT     also count how many points of INPUT (any readable file) are mesh vertices\n"
     "                     (points_input, points_used; matched by exact coordinates)\n"
     "  --reference REF    also report face_recall: the share of REF's triangles that MESH contains\n"
@@ -33,6 +40,7 @@ const char* const STATS_USAGE =
 
 int run_stats(int argc, char** argv) {
     const std::vector<OptionSpec> options = {
+        {"--weld", nullptr, false},
         {"--points", nullptr, true},
         {"--reference", nullptr, true},
         {"--output", "-o", true},
@@ -55,7 +63,7 @@ int run_stats(int argc, char** argv) {
     io::IoStatus status = io::read_mesh(args.positional[0], mesh);
     if (!status) return report_error(EXIT_FAILED, status.message);
     io::MeshReport report;
-    status = io::make_mesh_report(mesh, report);
+    status = io::make_mesh_report(mesh, report, args.has("--weld") ? io::VertexIdentity::position : io::VertexIdentity::index);
     if (!status) return report_error(EXIT_FAILED, status.message);
 
     if (args.has("--reference")) {

@@ -1,7 +1,8 @@
 // Topology and quality figures of a triangle mesh (what `dbrg stats` prints), and their JSON form.
 //
-// Definitions (vertices are identified by index, never by position: two vertices at the same place are
-// two vertices, as in the file):
+// Definitions (vertices are identified by index, as in the file: two vertices at the same place are two
+// vertices. With VertexIdentity::position the vertices at each position are welded into one first, and
+// the figures are those of the welded mesh):
 // - A face with a repeated index (a, a, b) has no proper edges. It counts in `faces` and
 //   `degenerate_faces` and takes no part in anything else. Every other face is a "proper" face.
 // - An edge is an unordered pair of vertices that are consecutive corners of a proper face. It is a
@@ -19,7 +20,8 @@
 // - `euler_characteristic` = vertices - edges + proper faces, with `vertices` the vertices of proper faces.
 // - `genus` is known only when the mesh has faces and is closed (no boundary edge), manifold (no
 //   non-manifold edge or vertex) and oriented; it is then the sum over components of (2 - chi_c) / 2.
-// - Degenerate faces have a repeated index or an exactly zero cross product of two edge vectors.
+// - Degenerate faces have a repeated index or three collinear corners (zero area), decided exactly for
+//   finite coordinates of any size; a face with a NaN or infinite coordinate is not of zero area.
 //   Duplicate faces use the same three vertices as an earlier face, in any order.
 #pragma once
 
@@ -41,10 +43,21 @@ struct ReferenceDistance {
     std::optional<SurfaceDistance> from_reference;  // from the reference's triangles: surface the mesh leaves out
 };
 
+// How make_mesh_report tells vertices apart.
+enum class VertexIdentity {
+    index,     // by their index: the mesh as the file has it
+    position,  // by their position: vertices at exactly equal coordinates are welded into one first, as
+               // wanted where a file repeats vertices along texture seams. -0 equals 0; NaN equals nothing.
+};
+
 struct MeshReport {
     uint64_t faces = 0;
     uint64_t vertices = 0;            // used by at least one proper face
     uint64_t vertices_isolated = 0;   // in the vertex array but used by no proper face
+    bool vertices_welded = false;     // the figures are of the welded mesh (VertexIdentity::position)
+    // Vertices of the array at exactly the position of an earlier one: the ones welding merges. JSON key
+    // "vertices_merged" when welded, "duplicate_positions" otherwise.
+    uint64_t duplicate_positions = 0;
     uint64_t edges_manifold = 0;
     uint64_t edges_boundary = 0;
     uint64_t edges_nonmanifold = 0;
@@ -67,9 +80,11 @@ struct MeshReport {
     std::optional<uint64_t> points_used;
 };
 
-// Computes the figures of `mesh` into `report`, replacing what it held. Fails only when the arrays are
-// malformed (a length not a multiple of 3, an index with no vertex). Linear time and memory.
-IoStatus make_mesh_report(const MeshData& mesh, MeshReport& report);
+// Computes the figures of `mesh` into `report`, replacing what it held, with vertices told apart as
+// `identity` says. Faces whose corners are welded together count as degenerate, and as duplicates when
+// they become the same as an earlier face. Fails only when the arrays are malformed (a length not a
+// multiple of 3, an index with no vertex). Linear time and memory.
+IoStatus make_mesh_report(const MeshData& mesh, MeshReport& report, VertexIdentity identity = VertexIdentity::index);
 
 // Sets reference_faces and face_recall: the share of the reference's triangles whose three corner
 // positions, exactly equal and in any order, are the corners of some triangle of `mesh`.
