@@ -6,8 +6,8 @@
 
 #include "core/point_input.h"
 #include "core/status.h"
+#include "delaunay/backend.h"
 #include "delaunay/point_conditioning.h"
-#include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
 #include "growth_snapshots.h"

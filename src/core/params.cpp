@@ -5,13 +5,9 @@
 #include <string.h>
 
 #include "core/c_enum.h"
+#include "core/pi.h"
 
 namespace dbrg {
-namespace {
-
-const double PI = 3.14159265358979323846;
-
-} // namespace
 
 void fill_default_params(dbrg_params& params) {
     memset(&params, 0, sizeof params);

@@ -1,5 +1,6 @@
-// Bowyer-Watson: the incremental Delaunay tetrahedralization — walk to the new point, collect the
-// cavity of tetrahedra whose circumsphere holds it, and connect the point to the cavity's boundary.
+// Bowyer-Watson: the incremental Delaunay tetrahedralization, one point at a time — walk to the new
+// point, collect the cavity of tetrahedra whose circumsphere holds it, and connect the point to the
+// cavity's boundary. The last round of a large input is shared among threads (parallel_insertion.cpp).
 //
 // Based on: A. Bowyer, "Computing Dirichlet tessellations" and D. F. Watson, "Computing the
 // n-dimensional Delaunay tessellation with application to Voronoi polytopes" (The Computer Journal 24,
@@ -9,20 +10,12 @@
 #include <string.h>
 
 #include <algorithm>
-#include <atomic>
-#include <optional>
-#if defined(__linux__)
-#include <errno.h>
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
 
 #include "core/intrinsics.h"
 #include "core/parallel.h"
 #include "core/status.h"
 #include "delaunay/affine_checks.h"
-#include "delaunay/spatial_sort.h"
-#include "delaunay/tetrahedralization.h"
+#include "delaunay/delaunay_builder.h"
 
 namespace dbrg {
 namespace {
@@ -33,47 +26,6 @@ namespace {
 constexpr uint32_t IN_CAVITY_BIT = 0x80000000u;
 constexpr uint32_t OUTSIDE_BIT = 0x80000000u;
 constexpr uint32_t VERTEX_ID_MASK = 0x7fffffffu;
-// Adjacency packs the neighbour in the upper 30 bits.
-constexpr uint32_t MAX_TET_SLOTS = 1u << 30;
-constexpr uint32_t NO_FACE = 4;
-constexpr uint32_t PROGRESS_INTERVAL = 4096;
-constexpr uint64_t WALK_SEED = 0xbb67ae8584caa73bull;
-// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35), of the real meshes'
-// vertices 5.8 to 7, of dense samples of closed surfaces up to three times as many. The store is reserved
-// for the low end of that; when it is full, the tetrahedra per point inserted so far (BRIO spreads every
-// round over the whole set, so that ratio hardly changes as points come in) project the final count, and
-// the store grows to that plus a margin on the part still to come, at least a sixteenth. So the unused
-// capacity at the end, and with it the peak, stays within a few percent of the store.
-constexpr double EXPECTED_TETS_PER_POINT = 6.0;
-constexpr size_t GROWTH_DIVISOR = 16;
-constexpr double PROJECTION_MARGIN = 1.05;
-// Below this many new store entries per thread, a thread costs more to start than the fill it takes over.
-constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 18;
-// Shared insertion of the last BRIO round: at most this many threads (each needs a mark below 256 and
-// about 300 KB of scratch space), each with room for a cavity of this many tetrahedra and faces (a
-// thousand times the usual), for this many claims at once, taking slots this many at a time, and
-// remembering up to one in DEFERRED_SHARE of its points as given up.
-constexpr uint32_t MAX_INSERTION_THREADS = 8;
-constexpr size_t MAX_SHARED_CAVITY = 1024;
-constexpr size_t MAX_SHARED_FACES = 2048;
-constexpr size_t MAX_SHARED_HELD = 8192;
-constexpr uint32_t CHUNK_SLOTS = 1024;
-constexpr uint32_t DEFERRED_SHARE = 8;
-
-// Face lf of a tetrahedron as three local vertices in the order that makes (face, lf) an even
-// permutation of (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.
-constexpr uint32_t FACE_VERTEX[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
-
-struct BoundaryFace {
-    uint32_t tet;   // a cavity tetrahedron
-    uint32_t face;  // its local face on the cavity boundary
-};
-
-struct NewTet {
-    uint32_t vertex[4];
-    uint32_t outer;  // packed adjacency across face `face` (the old cavity boundary)
-    uint32_t face;   // the local index of the new point
-};
 
 // For the new point in slot lf and a face g != lf of a new tetrahedron: the slots x, y such that the
 // face, oriented with the tetrahedron's own vertex g on its positive side, runs (new point, x, y).
@@ -84,221 +36,12 @@ constexpr uint8_t DIRECTED_EDGE[4][4][2] = {
     {{2, 1}, {0, 2}, {1, 0}, {0, 0}},
 };
 
-struct EdgeEntry {
-    uint64_t edge;  // x << 32 | y, a directed edge; EMPTY_EDGE if unused
-    uint32_t link;  // the new tetrahedron and its local face filed under the edge
-};
-constexpr uint64_t EMPTY_EDGE = UINT64_MAX;
-
-struct FiledFace {
-    uint64_t edge;   // x << 32 | y for the face running v -> x -> y
-    uint32_t link;   // the new tetrahedron and its local face
-    uint32_t entry;  // where in the table it was filed (faces filed only)
-};
-
-
-// Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
-// page fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
-// written in full anyway. Advice only, and only for malloc's memory: a caller's allocator may hand out
-// memory the library must not give advice about. errno is left as it was.
-void populate(const Memory& memory, void* data, size_t bytes) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    if (!memory.uses_system_allocator()) return;
-    const long page_size = sysconf(_SC_PAGESIZE);
-    if (page_size <= 0) return;
-    const uintptr_t page = static_cast<uintptr_t>(page_size);
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + page - 1) & ~(page - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(page - 1);
-    const int saved_errno = errno;
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
-    errno = saved_errno;
-#else
-    (void)memory;
-    (void)data;
-    (void)bytes;
-#endif
-}
-
-// Slots in the edge table for the faces of `faces` new tetrahedra: a power of two, at most half full.
-size_t edge_table_size(size_t faces) {
-    size_t size = 64;
-    while (size < 3 * faces) size *= 2;
-    return size;
-}
-
 uint32_t hash_edge(uint64_t edge) {
     const uint64_t h = edge * 0x9e3779b97f4a7c15ull;
     return static_cast<uint32_t>(h >> 40);
 }
 
 } // namespace
-
-// What one thread needs to insert points: where its next walk starts, its random bits and predicate
-// counts, its free slots and the scratch space of one insertion. While several threads insert at once,
-// each also has a mark, the tetrahedra it has claimed with it, the unused slots handed to it and the
-// points it left for later.
-struct Inserter {
-    explicit Inserter(Memory& memory)
-        : cavity(memory), outside(memory), boundary(memory), new_tets(memory), new_slots(memory), edges(memory),
-          filed(memory), held(memory), deferred(memory) {}
-
-    uint32_t hint = 0;  // where the next walk starts: a tetrahedron of the last insertion, or where one given up got to
-    uint64_t random = WALK_SEED;
-    PredicateCounters counters;
-    int64_t finite_change = 0;    // finite tetrahedra made less those removed
-    uint32_t free_head = NO_TET;  // free slots, chained through adjacency entry 0
-    uint32_t free_count = 0;
-    uint32_t chunk_next = 0, chunk_end = 0;  // unused slots handed to this thread (shared insertion)
-    uint8_t mark = 0;                        // its mark in the claims (shared insertion)
-    bool left_out = false;                   // the last shared insertion gave its point up
-    uint32_t inserted = 0;                   // points a shared insertion put in
-    bool out_of_slots = false;               // the store is full (shared insertion)
-    const char* failure = nullptr;           // why a shared insertion failed (reported by the calling thread)
-
-    Array<uint32_t> cavity;
-    Array<uint32_t> outside;
-    Array<BoundaryFace> boundary;
-    Array<NewTet> new_tets;
-    Array<uint32_t> new_slots;
-    Array<EdgeEntry> edges;
-    Array<FiledFace> filed;     // the faces one insertion filed in edges
-    Array<uint32_t> held;       // the tetrahedra claimed with `mark`
-    Array<uint32_t> deferred;   // points given up, for the calling thread to insert after the others
-};
-
-class DelaunayBuilder {
-public:
-    DelaunayBuilder(Tetrahedralization& out, Context& context)
-        : out_(out), context_(context), memory_(context.memory), main_(memory_), pending_(memory_), claims_(memory_) {}
-
-    // Inserts the `count` points of `points` in the order `order` gives (the four first affinely
-    // independent ones first). Vertex ids are indices into `points`.
-    dbrg_status run(const double* points, BrioOrder& order, uint32_t count);
-
-private:
-    dbrg_status start();
-    bool next_vertex(uint32_t& v);
-    // Inserts v; `next` is the point inserted after it, or null. Shared: other threads insert at the same
-    // time; where a tetrahedron it needs is claimed by one of them, or its fixed scratch space or slots do
-    // not suffice, it changes nothing and sets `left_out`.
-    template <bool Shared> dbrg_status insert(Inserter& in, uint32_t v, const double* next);
-    template <bool Shared> dbrg_status locate(Inserter& in, uint32_t start, const double* p, uint32_t& found);
-    template <bool Shared> dbrg_status give_up(Inserter& in);
-    template <bool Shared> dbrg_status fail_internal(Inserter& in, const char* message);
-    bool in_conflict(Inserter& in, const uint32_t* tet, const double* p);
-    template <bool Shared> dbrg_status take_slot(Inserter& in, uint32_t& slot);
-    dbrg_status size_store(size_t slots);
-    size_t projected_slots() const;
-    template <bool Shared> dbrg_status link_new_tets(Inserter& in);
-    void choose_hint(Inserter& in, const double* next);
-    const double* point(uint32_t v) const { return points_ + 3 * size_t(v); }
-
-    // Shared insertion of the last BRIO round.
-    dbrg_status insert_last_round(uint32_t parts);
-    dbrg_status prepare_inserter(Inserter& in, uint32_t part, uint32_t deferred_room);
-    void insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, dbrg_status& status);
-    bool claim(Inserter& in, uint32_t t);
-    void release_claims(Inserter& in);
-    bool room_for(Inserter& in, size_t faces, size_t cavity_size);
-    void hand_back_chunk(Inserter& in);
-    void refresh_pointers() {
-        vertex_ = out_.vertices_.data();
-        adjacency_ = out_.adjacency_.data();
-    }
-    void free_slot(Inserter& in, uint32_t s) {
-        vertex_[4 * size_t(s)] = Tetrahedralization::FREE_MARK;
-        adjacency_[4 * size_t(s)] = in.free_head;
-        in.free_head = s;
-        ++in.free_count;
-    }
-    uint32_t next_random(Inserter& in) {
-        // xorshift64: only a few bits per walk step are needed, and it has to be cheap.
-        in.random ^= in.random << 13;
-        in.random ^= in.random >> 7;
-        in.random ^= in.random << 17;
-        return static_cast<uint32_t>(in.random >> 32);
-    }
-
-    Tetrahedralization& out_;
-    Context& context_;
-    Memory& memory_;
-    const double* points_ = nullptr;
-    uint32_t* vertex_ = nullptr;     // out_.vertices_.data(), refreshed whenever the store grows
-    uint32_t* adjacency_ = nullptr;  // out_.adjacency_.data()
-    uint32_t slot_end_ = 0;          // slots in use or free; the arrays hold more until run() ends
-    BrioOrder* order_ = nullptr;     // the insertion order
-    uint32_t count_ = 0;             // points to insert
-    uint32_t inserted_ = 0;          // points inserted so far
-    Inserter main_;                  // the calling thread's
-
-    Array<uint32_t> pending_;  // points the order gave before the first tetrahedron was complete
-    size_t pending_next_ = 0;
-
-    // Shared insertion: per slot, the mark of the thread that claimed it (0: none); the next slot not yet
-    // handed to a thread; a flag that tells the threads to stop.
-    Array<uint8_t> claims_;
-    std::atomic<uint32_t> next_chunk_{0};
-    std::atomic<bool> stop_{false};
-};
-
-template <bool Shared>
-dbrg_status DelaunayBuilder::take_slot(Inserter& in, uint32_t& slot) {
-    if (in.free_head != NO_TET) {
-        slot = in.free_head;
-        in.free_head = adjacency_[4 * size_t(slot)];
-        --in.free_count;
-    } else if (Shared) {
-        slot = in.chunk_next++;  // room_for made sure there is one
-    } else {
-        const size_t slots = slot_end_;
-        if (slots >= MAX_TET_SLOTS) {
-            return context_.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than %u tetrahedra",
-                                 MAX_TET_SLOTS);
-        }
-        if (4 * slots == out_.vertices_.size()) {
-            const size_t grown = slots + slots / GROWTH_DIVISOR + 64;
-            DBRG_PROPAGATE(size_store(std::min<size_t>(std::max(grown, projected_slots()), MAX_TET_SLOTS)));
-        }
-        slot = slot_end_++;
-        return DBRG_OK;
-    }
-    return Shared && !claim(in, slot) ? fail_internal<Shared>(in, "a free slot was claimed (a bug in dbrg)") : DBRG_OK;
-}
-
-// The slots the tetrahedralization will need: the tetrahedra per point inserted so far (BRIO spreads
-// every round over the whole set, so that ratio hardly changes as points come in) for all the points,
-// with a margin on the part still to come.
-size_t DelaunayBuilder::projected_slots() const {
-    if (inserted_ == 0 || inserted_ >= count_) return slot_end_;
-    // Clamped while still a double: the cast of a value beyond size_t's range is undefined.
-    const double projected = slot_end_ + double(slot_end_) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN + 64;
-    return projected < MAX_TET_SLOTS ? static_cast<size_t>(projected) : MAX_TET_SLOTS;
-}
-
-dbrg_status DelaunayBuilder::size_store(size_t slots) {
-    // The arrays are sized (and so written) to room for `slots` slots at once, in one fill split among the
-    // threads, rather than four entries per new slot: those small writes each waited for a new cache
-    // line, and took a tenth of the time. slot_end_ counts the slots in use; run() cuts the arrays' size to
-    // it (the spare capacity, about 1 %, stays allocated).
-    Array<uint32_t>& vertices = out_.vertices_;
-    Array<uint32_t>& adjacency = out_.adjacency_;
-    const size_t old_size = vertices.size();
-    if (!vertices.reserve(4 * slots) || !adjacency.reserve(4 * slots)) return context_.fail_out_of_memory();
-    const size_t new_size = 4 * slots;
-    uint32_t* const vertex_ids = vertices.data() + old_size;
-    uint32_t* const neighbours = adjacency.data() + old_size;
-    const uint32_t parts = part_count(context_.params.threads, new_size - old_size, MIN_ENTRIES_PER_FILL_THREAD);
-    for_each_slice(new_size - old_size, parts, [&](size_t begin, size_t end) {
-        populate(memory_, vertex_ids + begin, (end - begin) * sizeof(uint32_t));
-        populate(memory_, neighbours + begin, (end - begin) * sizeof(uint32_t));
-        std::fill(vertex_ids + begin, vertex_ids + end, 0u);
-        std::fill(neighbours + begin, neighbours + end, 0u);
-    });
-    vertices.resize_unwritten(new_size);
-    adjacency.resize_unwritten(new_size);
-    refresh_pointers();
-    return DBRG_OK;
-}
 
 bool DelaunayBuilder::in_conflict(Inserter& in, const uint32_t* tet, const double* p) {
     PredicateCounters& counters = in.counters;
@@ -324,7 +67,7 @@ dbrg_status DelaunayBuilder::locate(Inserter& in, uint32_t start, const double* 
         t = adjacency_[4 * size_t(t) + 3] >> 2;
         if (Shared && !claim(in, t)) return give_up<Shared>(in);
     }
-    uint32_t entry = NO_FACE;  // the face we came in by: p is known to be on its inner side
+    uint32_t entry = NO_LOCAL_INDEX;  // the face we came in by: p is known to be on its inner side
     // A visibility walk in a Delaunay tetrahedralization never cycles (Edelsbrunner's acyclicity of
     // the in-front relation); the step limit only turns a bug into an error instead of a hang.
     const size_t step_limit = out_.vertices_.size() / 4 + 1000;
@@ -332,7 +75,7 @@ dbrg_status DelaunayBuilder::locate(Inserter& in, uint32_t start, const double* 
         const uint32_t* tv = vertex_ + 4 * size_t(t);
         const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
         const uint32_t first = next_random(in) & 3;
-        uint32_t exit = NO_FACE;
+        uint32_t exit = NO_LOCAL_INDEX;
         for (uint32_t k = 0; k < 4; ++k) {
             const uint32_t lf = (first + k) & 3;
             if (lf == entry) continue;
@@ -346,7 +89,7 @@ dbrg_status DelaunayBuilder::locate(Inserter& in, uint32_t start, const double* 
                 break;
             }
         }
-        if (exit == NO_FACE) {
+        if (exit == NO_LOCAL_INDEX) {
             found = t;  // p lies in the closed tetrahedron, hence strictly inside its circumsphere
             return DBRG_OK;
         }
@@ -415,18 +158,12 @@ dbrg_status DelaunayBuilder::start() {
         v[0] = v[1];
         v[1] = swap;
     }
-    const double expected = EXPECTED_TETS_PER_POINT * count_ + 64;
-    DBRG_PROPAGATE(size_store(static_cast<size_t>(expected < MAX_TET_SLOTS ? expected : MAX_TET_SLOTS)));
+    DBRG_PROPAGATE(size_initial_store());
     slot_end_ = 5;
-    // Slot 0: the finite tetrahedron. Slot 1 + lf: the infinite one behind its face lf, with the face's
-    // orientation reversed so that a point beyond the face sees it positively.
+    // Slot 0: the finite tetrahedron. Slot 1 + lf: the infinite one behind its face lf.
     memcpy(vertex_, v, sizeof v);
     for (uint32_t lf = 0; lf < 4; ++lf) {
-        uint32_t* iv = vertex_ + 4 * (1 + lf);
-        iv[0] = v[FACE_VERTEX[lf][1]];
-        iv[1] = v[FACE_VERTEX[lf][0]];
-        iv[2] = v[FACE_VERTEX[lf][2]];
-        iv[3] = INFINITE_VERTEX;
+        infinite_tet_behind(v, lf, vertex_ + 4 * (1 + lf));
         adjacency_[lf] = (1 + lf) << 2 | 3;
         adjacency_[4 * (1 + lf) + 3] = 0u << 2 | lf;
     }
@@ -435,9 +172,8 @@ dbrg_status DelaunayBuilder::start() {
         for (uint32_t f = 0; f < 3; ++f) {
             for (uint32_t t = 1; t < 5; ++t) {
                 if (t == s) continue;
-                // t shares face f of s when t lacks exactly the vertex s[f] among s's finite ones... i.e.
-                // when t contains both other finite vertices of s.
-                uint32_t shared = 0, missing = NO_FACE;
+                // t is across face f of s when it holds both finite vertices of s other than s[f].
+                uint32_t shared = 0, missing = NO_LOCAL_INDEX;
                 for (uint32_t g = 0; g < 3; ++g) {
                     const uint32_t w = vertex_[4 * t + g];
                     bool in_s = false;
@@ -590,11 +326,7 @@ dbrg_status DelaunayBuilder::link_new_tets(Inserter& in) {
     // without a branch (each is written at both ends of filed, and one end advances), so that the loops
     // that follow have no unpredictable found/not-found or filed/looked-up branch.
     const size_t face_count = in.new_tets.size();
-    const size_t table_size = edge_table_size(face_count);
-    if (in.edges.size() < table_size) {  // never when shared: room_for checked it
-        if (!in.edges.resize(table_size)) return context_.fail_out_of_memory();
-        for (EdgeEntry& e : in.edges) e.edge = EMPTY_EDGE;
-    }
+    DBRG_PROPAGATE(size_edge_table(in, face_count));  // never grows when shared: room_for checked it
     const size_t total = 3 * face_count;
     if (!in.filed.resize(total)) return context_.fail_out_of_memory();
     const uint32_t mask = static_cast<uint32_t>(in.edges.size() - 1);
@@ -640,6 +372,16 @@ dbrg_status DelaunayBuilder::link_new_tets(Inserter& in) {
     return DBRG_OK;
 }
 
+// Makes the edge table big enough for the faces of `faces` new tetrahedra, every entry empty.
+dbrg_status DelaunayBuilder::size_edge_table(Inserter& in, size_t faces) {
+    const size_t table_size = edge_table_size(faces);
+    if (in.edges.size() < table_size) {
+        if (!in.edges.resize(table_size)) return context_.fail_out_of_memory();
+        for (EdgeEntry& e : in.edges) e.edge = EMPTY_EDGE;
+    }
+    return DBRG_OK;
+}
+
 dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_t n) {
     points_ = points;
     order_ = &order;
@@ -672,208 +414,13 @@ dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_
     return context_.report(DBRG_STAGE_DELAUNAY, 1.0);
 }
 
-// The last BRIO round, split into consecutive stretches of the order (so into separate regions of
-// space), one per thread, inserted at once. Each thread claims a tetrahedron (an atomic mark per slot)
-// before it reads it, and keeps its claims until its point is in; a cavity's tetrahedra and all their
-// neighbours are claimed before anything changes, so no thread ever reads a tetrahedron another is
-// rewriting. Where another thread has one, the point is given up, and the calling thread inserts it
-// afterwards. The tetrahedralization of a point set does not depend on the insertion order, so the
-// tetrahedra are the same as with one thread (their slots differ). Threads take new slots in chunks
-// from a store sized beforehand and never allocate: what needs more room than their fixed scratch space
-// is given up too. A thread that finds the store full stops; the store grows and they go on.
-dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
-    std::optional<Inserter> others[MAX_INSERTION_THREADS];
-    Inserter* inserters[MAX_INSERTION_THREADS] = {&main_};
-    BrioOrder::Slice slices[MAX_INSERTION_THREADS];
-    dbrg_status statuses[MAX_INSERTION_THREADS];
-    // Whether a part's hint is a tetrahedron of the tetrahedralization as it is now: the calling thread's
-    // is, from its last insertion; after a phase, those of the parts that ran (each held its own). A part
-    // that sat a phase out while others inserted finds a start again: its tetrahedron may be gone.
-    bool hint_live[MAX_INSERTION_THREADS] = {true};
-    for (uint32_t part = 0; part < parts; ++part) {
-        if (part > 0) inserters[part] = &others[part].emplace(memory_);
-        slices[part] = order_->last_round_slice(part, parts);
-        DBRG_PROPAGATE(prepare_inserter(*inserters[part], part, slices[part].span() / DEFERRED_SHARE + 64));
-        inserters[part]->random ^= part;  // other walks, the same result
-    }
-    uint32_t anchor = main_.hint;  // a live tetrahedron
-    bool store_full = true;
-    while (store_full) {
-        const size_t slots = std::max(projected_slots(), size_t(slot_end_) + size_t(CHUNK_SLOTS) * parts);
-        if (4 * slots > out_.vertices_.size()) DBRG_PROPAGATE(size_store(std::min<size_t>(slots, MAX_TET_SLOTS)));
-        const uint32_t capacity = static_cast<uint32_t>(out_.vertices_.size() / 4);
-        claims_.clear();
-        if (!claims_.resize(capacity, 0)) return context_.fail_out_of_memory();
-        next_chunk_.store(slot_end_, std::memory_order_relaxed);
-        stop_.store(false, std::memory_order_relaxed);
-        bool active[MAX_INSERTION_THREADS] = {};
-        for (uint32_t part = 0; part < parts; ++part) {
-            Inserter& in = *inserters[part];
-            statuses[part] = DBRG_OK;
-            in.out_of_slots = false;
-            in.held.clear();
-            BrioOrder::Slice rest = slices[part];
-            uint32_t first;
-            if (!rest.next(first) || in.deferred.size() == in.deferred.capacity()) continue;
-            if (!hint_live[part]) {
-                // Found by the calling thread, walking from a live tetrahedron to the part's next point.
-                DBRG_PROPAGATE(locate<false>(main_, anchor, point(first), in.hint));
-                hint_live[part] = true;
-            }
-            if (claims_[in.hint] != 0) continue;  // the same start as another part's: this one waits
-            claims_[in.hint] = in.mark;
-            in.held.push_back(in.hint);  // within the capacity prepare_inserter reserved
-            active[part] = true;
-        }
-        run_parts(parts, [&](uint32_t part) {
-            if (active[part]) insert_slice(*inserters[part], slices[part], part, statuses[part]);
-        });
-        // The calling thread alone again.
-        slot_end_ = std::min(next_chunk_.load(std::memory_order_relaxed), capacity);
-        store_full = false;
-        uint32_t inserted = 0;
-        for (uint32_t part = 0; part < parts; ++part) {
-            Inserter& in = *inserters[part];
-            if (statuses[part] != DBRG_OK) {
-                return in.failure ? context_.fail(statuses[part], "%s", in.failure) : statuses[part];
-            }
-            hand_back_chunk(in);
-            inserted += in.inserted;
-            in.inserted = 0;
-            store_full = store_full || in.out_of_slots;
-        }
-        inserted_ += inserted;
-        for (uint32_t part = 0; part < parts; ++part) {
-            hint_live[part] = active[part] || (hint_live[part] && inserted == 0);
-            if (hint_live[part]) anchor = inserters[part]->hint;
-        }
-        store_full = store_full && inserted > 0;
-    }
-    claims_.release();
-    if (!hint_live[0]) main_.hint = anchor;
-    for (uint32_t part = 1; part < parts; ++part) {
-        Inserter& in = *inserters[part];
-        while (in.free_head != NO_TET) {
-            const uint32_t s = in.free_head;
-            in.free_head = adjacency_[4 * size_t(s)];
-            free_slot(main_, s);
-        }
-        main_.finite_change += in.finite_change;
-        main_.counters += in.counters;
-    }
-    // What the threads left: the points they set aside, and the rest of a stretch they stopped in.
-    const auto insert_left = [&](uint32_t v) {
-        if (inserted_ % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(inserted_) / count_));
-        ++inserted_;
-        return insert<false>(main_, v, nullptr);
-    };
-    for (uint32_t part = 0; part < parts; ++part) {
-        for (uint32_t v : inserters[part]->deferred) DBRG_PROPAGATE(insert_left(v));
-        uint32_t v;
-        while (slices[part].next(v)) DBRG_PROPAGATE(insert_left(v));
-    }
-    return DBRG_OK;
-}
-
-dbrg_status DelaunayBuilder::prepare_inserter(Inserter& in, uint32_t part, uint32_t deferred_room) {
-    in.mark = static_cast<uint8_t>(part + 1);
-    in.held.clear();
-    in.deferred.clear();
-    const bool room = in.cavity.reserve(MAX_SHARED_CAVITY) && in.outside.reserve(MAX_SHARED_CAVITY) &&
-                      in.boundary.reserve(MAX_SHARED_FACES) && in.new_tets.reserve(MAX_SHARED_FACES) &&
-                      in.new_slots.reserve(MAX_SHARED_FACES) && in.filed.reserve(3 * MAX_SHARED_FACES) &&
-                      in.held.reserve(MAX_SHARED_HELD) && in.deferred.reserve(deferred_room);
-    if (!room) return context_.fail_out_of_memory();
-    const size_t table_size = edge_table_size(MAX_SHARED_FACES);
-    if (in.edges.size() < table_size) {
-        if (!in.edges.resize(table_size)) return context_.fail_out_of_memory();
-        for (EdgeEntry& e : in.edges) e.edge = EMPTY_EDGE;
-    }
-    return DBRG_OK;
-}
-
-// One thread's stretch. Points it sets aside are listed for the calling thread; once that list is full,
-// or the store is, the thread stops and leaves the rest of its stretch in `slice`. The calling thread's
-// part also reports progress (counting its own points only, so that the fraction never runs ahead) and
-// stops every part when the caller cancels.
-void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, dbrg_status& status) {
-    uint32_t next_at = slice.position(), next, steps = 0;
-    bool more = slice.next(next);
-    while (more && !stop_.load(std::memory_order_relaxed)) {
-        const uint32_t v = next, v_at = next_at;
-        next_at = slice.position();
-        more = slice.next(next);
-        status = insert<true>(in, v, more ? point(next) : nullptr);
-        if (status != DBRG_OK) {
-            stop_.store(true, std::memory_order_relaxed);
-            return;
-        }
-        if (!in.left_out) {
-            ++in.inserted;
-        } else if (!in.out_of_slots && in.deferred.size() < in.deferred.capacity()) {
-            in.deferred.push_back(v);
-        } else {
-            slice.rewind(v_at);
-            return;
-        }
-        if (part == 0 && ++steps % PROGRESS_INTERVAL == 0) {
-            status = context_.report(DBRG_STAGE_DELAUNAY, double(inserted_ + in.inserted) / count_);
-            if (status != DBRG_OK) {
-                stop_.store(true, std::memory_order_relaxed);
-                return;
-            }
-        }
-    }
-    if (more) slice.rewind(next_at);
-}
-
-bool DelaunayBuilder::claim(Inserter& in, uint32_t t) {
-    uint8_t* mark = claims_.data() + t;
-    if (__atomic_load_n(mark, __ATOMIC_RELAXED) == in.mark) return true;
-    if (in.held.size() == in.held.capacity()) return false;
-    uint8_t unclaimed = 0;
-    if (!__atomic_compare_exchange_n(mark, &unclaimed, in.mark, false, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED)) return false;
-    in.held.push_back(t);
-    return true;
-}
-
-// Lets go of every claim but the hint's, which the next walk starts from.
-void DelaunayBuilder::release_claims(Inserter& in) {
-    for (uint32_t t : in.held) {
-        if (t != in.hint) __atomic_store_n(claims_.data() + t, uint8_t(0), __ATOMIC_RELEASE);
-    }
-    in.held.clear();
-    in.held.push_back(in.hint);
-}
-
-// Whether a shared insertion that replaces `cavity_size` tetrahedra by `faces` new ones fits in the
-// thread's scratch space and slots; takes another chunk of the store if it needs one.
-bool DelaunayBuilder::room_for(Inserter& in, size_t faces, size_t cavity_size) {
-    if (faces > in.new_tets.capacity() || faces > in.new_slots.capacity() || 3 * faces > in.filed.capacity() ||
-        edge_table_size(faces) > in.edges.size()) {
-        return false;
-    }
-    const size_t needed = faces > cavity_size ? faces - cavity_size : 0;
-    if (in.held.size() + needed > in.held.capacity()) return false;
-    const uint32_t capacity = static_cast<uint32_t>(claims_.size());
-    while (in.free_count + (in.chunk_end - in.chunk_next) < needed) {
-        // Checked before adding, so that threads out of room cannot wrap the counter around.
-        in.out_of_slots = next_chunk_.load(std::memory_order_relaxed) >= capacity;
-        if (in.out_of_slots) return false;
-        const uint32_t begin = next_chunk_.fetch_add(CHUNK_SLOTS, std::memory_order_relaxed);
-        in.out_of_slots = begin >= capacity;
-        if (in.out_of_slots) return false;
-        hand_back_chunk(in);
-        in.chunk_next = begin;
-        in.chunk_end = std::min(begin + CHUNK_SLOTS, capacity);
-    }
-    return true;
-}
-
-// The unused rest of the thread's chunk goes onto its free list.
-void DelaunayBuilder::hand_back_chunk(Inserter& in) {
-    while (in.chunk_next < in.chunk_end) free_slot(in, in.chunk_next++);
-}
+// Defined here and called from the other files of the engine too: insert and locate by the shared
+// insertion of the last round (parallel_insertion.cpp), fail_internal by take_slot (tet_slots.cpp).
+template dbrg_status DelaunayBuilder::insert<false>(Inserter& in, uint32_t v, const double* next);
+template dbrg_status DelaunayBuilder::insert<true>(Inserter& in, uint32_t v, const double* next);
+template dbrg_status DelaunayBuilder::locate<false>(Inserter& in, uint32_t start, const double* p, uint32_t& found);
+template dbrg_status DelaunayBuilder::fail_internal<false>(Inserter& in, const char* message);
+template dbrg_status DelaunayBuilder::fail_internal<true>(Inserter& in, const char* message);
 
 dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Context& context) {
     clear();
@@ -901,21 +448,7 @@ dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Cont
         status = builder.run(points, order, count);
     }
     order.release();
-    if (status == DBRG_OK) {
-        // One incident tetrahedron per vertex, the first slot that has it.
-        if (!vertex_tet_.resize(count, NO_TET)) {
-            status = context.fail_out_of_memory();
-        } else {
-            const uint32_t slots = tet_slots();
-            for (uint32_t t = slots; t-- > 0;) {
-                if (tet_is_free(t)) continue;
-                for (uint32_t lv = 0; lv < 4; ++lv) {
-                    const uint32_t w = vertices_[4 * size_t(t) + lv];
-                    if (w != INFINITE_VERTEX) vertex_tet_[w] = t;
-                }
-            }
-        }
-    }
+    if (status == DBRG_OK && !index_vertex_tets()) status = context.fail_out_of_memory();
     const double end = seconds_now();
     context.stats.seconds_sort += insert_start - sort_start;
     context.stats.seconds_delaunay += end - insert_start;

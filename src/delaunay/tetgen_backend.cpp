@@ -13,8 +13,6 @@
 namespace dbrg {
 namespace {
 
-constexpr uint32_t FACE_VERTEX[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
-
 struct HullEdge {
     uint32_t a, b;   // a < b
     uint32_t tet;    // an infinite tetrahedron
@@ -55,7 +53,7 @@ dbrg_status TetgenImporter::import(const tetgenio& result, const double* points,
         for (int k = 0; k < 4; ++k) hull_faces += nl[4 * size_t(t) + k] < 0;
     }
     const size_t slots = size_t(finite) + hull_faces;
-    if (slots >= (size_t(1) << 30)) {
+    if (slots >= MAX_TET_SLOTS) {
         return context.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than 2^30 tetrahedra");
     }
     Array<uint32_t>& vertices = out.vertices_;
@@ -79,22 +77,21 @@ dbrg_status TetgenImporter::import(const tetgenio& result, const double* points,
             const int neighbour = nl[4 * size_t(t) + k];
             if (neighbour < 0) continue;
             const uint32_t n = static_cast<uint32_t>(neighbour);
-            uint32_t lf = 4, g = 4;
+            uint32_t lf = NO_LOCAL_INDEX, g = NO_LOCAL_INDEX;
             for (uint32_t lv = 0; lv < 4; ++lv) {
-                if (out.tet_local_index(n, tv[lv]) == 4) lf = lv;
-                if (out.tet_local_index(t, vertices[4 * size_t(n) + lv]) == 4) g = lv;
+                if (out.tet_local_index(n, tv[lv]) == NO_LOCAL_INDEX) lf = lv;
+                if (out.tet_local_index(t, vertices[4 * size_t(n) + lv]) == NO_LOCAL_INDEX) g = lv;
             }
-            if (lf == 4 || g == 4) return context.fail(DBRG_ERR_INTERNAL, "TetGen neighbours %u and %u share no face", t, n);
+            if (lf == NO_LOCAL_INDEX || g == NO_LOCAL_INDEX) {
+                return context.fail(DBRG_ERR_INTERNAL, "TetGen neighbours %u and %u share no face", t, n);
+            }
             adjacency[4 * size_t(t) + lf] = n << 2 | g;
         }
         for (uint32_t lf = 0; lf < 4; ++lf) {
             if (adjacency[4 * size_t(t) + lf] != NO_TET) continue;
             const uint32_t s = next_infinite++;
             uint32_t* iv = &vertices[4 * size_t(s)];
-            iv[0] = tv[FACE_VERTEX[lf][1]];
-            iv[1] = tv[FACE_VERTEX[lf][0]];
-            iv[2] = tv[FACE_VERTEX[lf][2]];
-            iv[3] = INFINITE_VERTEX;
+            infinite_tet_behind(tv, lf, iv);
             adjacency[4 * size_t(t) + lf] = s << 2 | 3;
             adjacency[4 * size_t(s) + 3] = t << 2 | lf;
             for (uint32_t f = 0; f < 3; ++f) {
@@ -119,13 +116,7 @@ dbrg_status TetgenImporter::import(const tetgenio& result, const double* points,
         adjacency[4 * size_t(y.tet) + y.face] = x.tet << 2 | x.face;
     }
     out.finite_tets_ = finite;
-    if (!out.vertex_tet_.resize(count, NO_TET)) return context.fail_out_of_memory();
-    for (uint32_t t = static_cast<uint32_t>(slots); t-- > 0;) {
-        for (uint32_t lv = 0; lv < 4; ++lv) {
-            const uint32_t w = vertices[4 * size_t(t) + lv];
-            if (w != INFINITE_VERTEX) out.vertex_tet_[w] = t;
-        }
-    }
+    if (!out.index_vertex_tets()) return context.fail_out_of_memory();
     for (uint32_t v = 0; v < count; ++v) {
         if (out.vertex_tet_[v] == NO_TET) {
             return context.fail(DBRG_ERR_INTERNAL, "TetGen left point %u out of the tetrahedralization", v);

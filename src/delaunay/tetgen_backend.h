@@ -21,11 +21,4 @@ bool tetgen_available();
 // DBRG_ERR_INTERNAL when TetGen fails, besides the statuses of build.
 dbrg_status build_with_tetgen(const double* points, uint32_t count, Context& context, Tetrahedralization& out);
 
-// Builds `out` with the chosen backend.
-inline dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count,
-                                            Context& context, Tetrahedralization& out) {
-    if (backend == DBRG_BACKEND_TETGEN) return build_with_tetgen(points, count, context, out);
-    return out.build(points, count, context);
-}
-
 } // namespace dbrg

@@ -1,4 +1,5 @@
-// Tetrahedralization: the tetrahedron store's queries — local indices and the star of a vertex.
+// Tetrahedralization: the tetrahedron store's queries — local indices, the tetrahedron of each vertex
+// and the star of a vertex.
 #include "delaunay/tetrahedralization.h"
 
 namespace dbrg {
@@ -62,12 +63,24 @@ void Tetrahedralization::clear() {
     finite_tets_ = 0;
 }
 
+bool Tetrahedralization::index_vertex_tets() {
+    if (!vertex_tet_.resize(vertex_count_, NO_TET)) return false;
+    for (uint32_t t = tet_slots(); t-- > 0;) {
+        if (tet_is_free(t)) continue;
+        for (uint32_t lv = 0; lv < 4; ++lv) {
+            const uint32_t w = vertices_[4 * size_t(t) + lv];
+            if (w != INFINITE_VERTEX) vertex_tet_[w] = t;
+        }
+    }
+    return true;
+}
+
 uint32_t Tetrahedralization::tet_local_index(uint32_t t, uint32_t v) const {
     const uint32_t* tv = vertices_.data() + 4 * size_t(t);
     for (uint32_t lv = 0; lv < 4; ++lv) {
         if (tv[lv] == v) return lv;
     }
-    return 4;
+    return NO_LOCAL_INDEX;
 }
 
 void Tetrahedralization::canonical_corners(uint32_t t, uint32_t local[4]) const {

@@ -13,12 +13,32 @@ namespace dbrg {
 constexpr uint32_t NO_TET = UINT32_MAX;
 // The vertex at infinity: every convex-hull face has an infinite tetrahedron behind it.
 constexpr uint32_t INFINITE_VERTEX = UINT32_MAX;
+// Tetrahedron slots are numbered below this: adjacency packs the neighbour in the upper 30 bits.
+constexpr uint32_t MAX_TET_SLOTS = 1u << 30;
+// A local index (0 to 3) that names no vertex or face of a tetrahedron.
+constexpr uint32_t NO_LOCAL_INDEX = 4;
 
 // Local numbering: face lf of a tetrahedron is the face opposite its local vertex lf. Finite
 // tetrahedra are positively oriented: orient3d(v0, v1, v2, v3) > 0. In an infinite tetrahedron the
 // infinite vertex is always local vertex 3, so face 3 is its convex-hull face, and the orientation
 // is the one it would have if the infinite vertex were a point far outside the hull:
 // orient3d(v0, v1, v2, q) > 0 for a point q beyond that hull face.
+
+// Face lf as three local vertices in the order that makes (face, lf) an even permutation of
+// (0, 1, 2, 3): orient3d(face, v_lf) then has the sign of the tetrahedron.
+constexpr uint32_t FACE_VERTEX[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+
+// The vertices of the infinite tetrahedron behind face lf of the finite tetrahedron `finite`: the
+// face with its orientation reversed, so that a point beyond it sees it positively, then the
+// infinite vertex.
+inline void infinite_tet_behind(const uint32_t finite[4], uint32_t lf, uint32_t behind[4]) {
+    behind[0] = finite[FACE_VERTEX[lf][1]];
+    behind[1] = finite[FACE_VERTEX[lf][0]];
+    behind[2] = finite[FACE_VERTEX[lf][2]];
+    behind[3] = INFINITE_VERTEX;
+}
+
+// The tetrahedra with their vertices and neighbours, in the local numbering above.
 class Tetrahedralization {
 public:
     explicit Tetrahedralization(Memory& memory);
@@ -53,7 +73,7 @@ public:
     uint32_t tet_adjacent(uint32_t t, uint32_t lf) const { return adjacency_[4 * size_t(t) + lf] >> 2; }
     // The local index, in tet_adjacent(t, lf), of the face shared with t.
     uint32_t tet_adjacent_face(uint32_t t, uint32_t lf) const { return adjacency_[4 * size_t(t) + lf] & 3u; }
-    // The local index of vertex v in t, or 4 when t does not contain v.
+    // The local index of vertex v in t, or NO_LOCAL_INDEX when t does not contain v.
     uint32_t tet_local_index(uint32_t t, uint32_t v) const;
     // The local indices of t's corners in a canonical order: the smallest vertex id first, then the
     // smallest of the other three, by an even permutation (so with t's orientation). How construction
@@ -85,6 +105,10 @@ public:
     static constexpr uint32_t FREE_MARK = UINT32_MAX - 1;
 
 private:
+    // Records one incident tetrahedron per vertex, the first slot that has it (vertex_tet_ holds NO_TET
+    // for a vertex in none). Returns false on allocation failure.
+    bool index_vertex_tets();
+
     const double* points_ = nullptr;
     uint32_t vertex_count_ = 0;
     uint32_t finite_tets_ = 0;
@@ -100,7 +124,9 @@ void Tetrahedralization::for_each_triangle_around_edge(uint32_t start, uint32_t 
     // Each tetrahedron around the edge (u, v) has two more vertices; step across the face that holds u,
     // v and the first of them (the face opposite the second) to the next tetrahedron around the edge.
     uint32_t t = start;
-    uint32_t apex = NO_TET;  // the vertex shared with the previous tetrahedron, unknown at the start
+    // The vertex shared with the previous tetrahedron. At the start there is none: u stands in, as it is
+    // never one of `others`.
+    uint32_t apex = u;
     do {
         uint32_t others[2];
         uint32_t n = 0;

@@ -26,9 +26,6 @@ bool report(char* message, size_t capacity, const char* format, ...) {
     return false;
 }
 
-// The even permutation of (0, 1, 2, 3) that ends with lf: (face, lf) keeps the tetrahedron's sign.
-constexpr uint32_t FACE_VERTEX[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
-
 } // namespace
 
 bool Tetrahedralization::validate(char* message, size_t message_capacity) const {
@@ -75,7 +72,7 @@ bool Tetrahedralization::validate(char* message, size_t message_capacity) const 
             // The shared face: the same three vertices on both sides.
             for (uint32_t k = 0; k < 3; ++k) {
                 const uint32_t w = tet_vertex(t, FACE_VERTEX[lf][k]);
-                if (tet_local_index(n, w) == 4 || tet_local_index(n, w) == g) {
+                if (tet_local_index(n, w) == NO_LOCAL_INDEX || tet_local_index(n, w) == g) {
                     return report(message, message_capacity, "tet %u face %u and tet %u face %u are different triangles",
                                   t, lf, n, g);
                 }
@@ -108,7 +105,7 @@ bool Tetrahedralization::validate(char* message, size_t message_capacity) const 
     if (vertex_tet_.size() != vertex_count_) return report(message, message_capacity, "vertex_tet has the wrong size");
     for (uint32_t v = 0; v < vertex_count_; ++v) {
         const uint32_t t = vertex_tet_[v];
-        if (t >= slots || tet_is_free(t) || tet_local_index(t, v) == 4) {
+        if (t >= slots || tet_is_free(t) || tet_local_index(t, v) == NO_LOCAL_INDEX) {
             return report(message, message_capacity, "vertex %u is in no tetrahedron (vertex_tet %u)", v, t);
         }
     }

@@ -10,6 +10,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "core/pi.h"
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
@@ -40,7 +41,7 @@ private:
     // A hole that cannot be filled within theta_sliver is tried once more with this limit: at a sharp tip (a
     // horn, an ear) the only triangles over the hole's vertices fold more sharply than theta_sliver allows,
     // and a closed surface is worth a sharp fold there. Folding back completely is still refused.
-    static constexpr double LAST_RESORT_FOLD_ANGLE = 175.0 * 3.14159265358979323846 / 180.0;
+    static constexpr double LAST_RESORT_FOLD_ANGLE = 175.0 * PI / 180.0;
 
     dbrg_status fill_holes();
     // Topological noise removal (small_handles.cpp): cuts closed components along short non-separating

@@ -6,12 +6,11 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/pi.h"
 #include "core/splitmix64.h"
 
 namespace dbrg::samples {
 namespace {
-
-const double PI = 3.14159265358979323846;
 
 class Random {
 public:

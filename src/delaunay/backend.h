@@ -1,0 +1,17 @@
+// Delaunay backend choice: the tetrahedralization from the engine the parameters name, the built-in one
+// or TetGen.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/context.h"
+#include "delaunay/tetrahedralization.h"
+
+namespace dbrg {
+
+// Builds `out` with `backend`: Tetrahedralization::build for DBRG_BACKEND_BUILTIN, build_with_tetgen
+// for DBRG_BACKEND_TETGEN; returns their status.
+dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count, Context& context,
+                                     Tetrahedralization& out);
+
+} // namespace dbrg

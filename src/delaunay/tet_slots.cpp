@@ -1,0 +1,127 @@
+// Tetrahedron slots during construction: taken from a thread's free list or chunk or from the end of the
+// store, which is sized ahead of need and written on several threads.
+#include <algorithm>
+#if defined(__linux__)
+#include <errno.h>
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
+#include "core/parallel.h"
+#include "core/status.h"
+#include "delaunay/delaunay_builder.h"
+
+namespace dbrg {
+namespace {
+
+// Finite tetrahedra per point of a uniform random set are about 6.77 (24 pi^2 / 35), of the real meshes'
+// vertices 5.8 to 7, of dense samples of closed surfaces up to three times as many. The store is reserved
+// for the low end of that; when it is full, the tetrahedra per point inserted so far (BRIO spreads every
+// round over the whole set, so that ratio hardly changes as points come in) project the final count, and
+// the store grows to that plus a margin on the part still to come, at least a sixteenth. So the unused
+// capacity at the end, and with it the peak, stays within a few percent of the store.
+constexpr double EXPECTED_TETS_PER_POINT = 6.0;
+constexpr size_t GROWTH_DIVISOR = 16;
+constexpr double PROJECTION_MARGIN = 1.05;
+// Below this many new store entries per thread, a thread costs more to start than the fill it takes over.
+constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 18;
+
+// Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
+// page fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
+// written in full anyway. Advice only, and only for malloc's memory: a caller's allocator may hand out
+// memory the library must not give advice about. errno is left as it was.
+void populate(const Memory& memory, void* data, size_t bytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    if (!memory.uses_system_allocator()) return;
+    const long page_size = sysconf(_SC_PAGESIZE);
+    if (page_size <= 0) return;
+    const uintptr_t page = static_cast<uintptr_t>(page_size);
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + page - 1) & ~(page - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(page - 1);
+    const int saved_errno = errno;
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+    errno = saved_errno;
+#else
+    (void)memory;
+    (void)data;
+    (void)bytes;
+#endif
+}
+
+} // namespace
+
+template <bool Shared>
+dbrg_status DelaunayBuilder::take_slot(Inserter& in, uint32_t& slot) {
+    if (in.free_head != NO_TET) {
+        slot = in.free_head;
+        in.free_head = adjacency_[4 * size_t(slot)];
+        --in.free_count;
+    } else if (Shared) {
+        slot = in.chunk_next++;  // room_for made sure there is one
+    } else {
+        const size_t slots = slot_end_;
+        if (slots >= MAX_TET_SLOTS) {
+            return context_.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than %u tetrahedra",
+                                 MAX_TET_SLOTS);
+        }
+        if (4 * slots == out_.vertices_.size()) {
+            const size_t grown = slots + slots / GROWTH_DIVISOR + 64;
+            DBRG_PROPAGATE(size_store(std::min<size_t>(std::max(grown, projected_slots()), MAX_TET_SLOTS)));
+        }
+        slot = slot_end_++;
+        return DBRG_OK;
+    }
+    return Shared && !claim(in, slot) ? fail_internal<Shared>(in, "a free slot was claimed (a bug in dbrg)") : DBRG_OK;
+}
+
+// Sequential and shared insertion (bowyer_watson.cpp) both take slots.
+template dbrg_status DelaunayBuilder::take_slot<false>(Inserter& in, uint32_t& slot);
+template dbrg_status DelaunayBuilder::take_slot<true>(Inserter& in, uint32_t& slot);
+
+// The store for the first points: room for the expected tetrahedra of all of them.
+dbrg_status DelaunayBuilder::size_initial_store() {
+    const double expected = EXPECTED_TETS_PER_POINT * count_ + 64;
+    return size_store(static_cast<size_t>(expected < MAX_TET_SLOTS ? expected : MAX_TET_SLOTS));
+}
+
+// The slots the tetrahedralization will need: the tetrahedra per point inserted so far (BRIO spreads
+// every round over the whole set, so that ratio hardly changes as points come in) for all the points,
+// with a margin on the part still to come.
+size_t DelaunayBuilder::projected_slots() const {
+    if (inserted_ == 0 || inserted_ >= count_) return slot_end_;
+    // Clamped while still a double: the cast of a value beyond size_t's range is undefined.
+    const double projected = slot_end_ + double(slot_end_) / inserted_ * (count_ - inserted_) * PROJECTION_MARGIN + 64;
+    return projected < MAX_TET_SLOTS ? static_cast<size_t>(projected) : MAX_TET_SLOTS;
+}
+
+dbrg_status DelaunayBuilder::size_store(size_t slots) {
+    // The arrays are sized (and so written) for `slots` slots at once, in one fill split among the threads,
+    // rather than four entries as each slot is taken: such small writes each wait for a new cache line, at
+    // a cost of about a tenth of the insertion time. slot_end_ counts the slots in use; run() cuts the
+    // arrays' size to it (the spare capacity, about 1 %, stays allocated).
+    Array<uint32_t>& vertices = out_.vertices_;
+    Array<uint32_t>& adjacency = out_.adjacency_;
+    const size_t old_size = vertices.size();
+    if (!vertices.reserve(4 * slots) || !adjacency.reserve(4 * slots)) return context_.fail_out_of_memory();
+    const size_t new_size = 4 * slots;
+    uint32_t* const vertex_ids = vertices.data() + old_size;
+    uint32_t* const neighbours = adjacency.data() + old_size;
+    const uint32_t parts = part_count(context_.params.threads, new_size - old_size, MIN_ENTRIES_PER_FILL_THREAD);
+    for_each_slice(new_size - old_size, parts, [&](size_t begin, size_t end) {
+        populate(memory_, vertex_ids + begin, (end - begin) * sizeof(uint32_t));
+        populate(memory_, neighbours + begin, (end - begin) * sizeof(uint32_t));
+        std::fill(vertex_ids + begin, vertex_ids + end, 0u);
+        std::fill(neighbours + begin, neighbours + end, 0u);
+    });
+    vertices.resize_unwritten(new_size);
+    adjacency.resize_unwritten(new_size);
+    refresh_pointers();
+    return DBRG_OK;
+}
+
+// The unused rest of the thread's chunk goes onto its free list.
+void DelaunayBuilder::hand_back_chunk(Inserter& in) {
+    while (in.chunk_next < in.chunk_end) free_slot(in, in.chunk_next++);
+}
+
+} // namespace dbrg
