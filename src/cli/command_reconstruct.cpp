@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
 #include "cli/resource_usage.h"
+#include "core/pi.h"
 #include "dbrg/dbrg.h"
 #include "io/json_writer.h"
 #include "io/mesh_io.h"
@@ -66,7 +67,7 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
         if (!parse_number(args.value("--sliver-angle"), number) || !(number > 90 && number < 180)) {
             return error = "--sliver-angle takes a number of degrees strictly between 90 and 180", false;
         }
-        params.sliver_angle = number * 3.14159265358979323846 / 180;
+        params.sliver_angle = number * PI / 180;
     }
     if (args.has("--boundary-mean")) {
         const std::string mean = args.value("--boundary-mean");
