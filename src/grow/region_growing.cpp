@@ -406,19 +406,16 @@ bool RegionGrower::passes_boundary_test(const Candidate& c) const {
     return c.radius <= factor * mean;
 }
 
-// Mean circumradius of the faces around both ends of the edge.
+// Mean circumradius of the faces around both ends of the edge (of a pinched end, its first fan's).
 double RegionGrower::local_mean_radius(uint32_t halfedge) const {
     double sum = 0;
     uint32_t count = 0;
     const uint32_t ends[2] = {surface_.origin(halfedge), surface_.target(halfedge)};
     for (uint32_t end : ends) {
-        const uint32_t start = surface_.vertex_halfedge(end);
-        uint32_t h = start;
-        do {
+        surface_.walk_fan(surface_.vertex_halfedge(end), [&](uint32_t h) {
             sum += face_radius(delaunay_, surface_, Surface::face_of(h));
             ++count;
-            h = surface_.rotate(h);
-        } while (h != NO_HALFEDGE && h != start);
+        });
     }
     return sum / count;
 }

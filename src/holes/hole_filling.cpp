@@ -300,13 +300,7 @@ dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t te
 // The mean of the unit normals of the faces around v (paper §5).
 Vec3 HoleFiller::vertex_normal(uint32_t v) const {
     Vec3 sum{0, 0, 0};
-    surface_.for_each_fan(v, [&](uint32_t start) {
-        uint32_t h = start;
-        do {
-            sum = sum + face_normal(delaunay_, surface_, Surface::face_of(h));
-            h = surface_.rotate(h);
-        } while (h != NO_HALFEDGE && h != start);
-    });
+    surface_.walk_vertex(v, [&](uint32_t h) { sum = sum + face_normal(delaunay_, surface_, Surface::face_of(h)); });
     return normalized(sum);
 }
 
