@@ -13,8 +13,8 @@
 #include "delaunay/tetrahedralization.h"
 #include "grow/edge_ring.h"
 #include "grow/region_growing.h"
-#include "holes/hole_filling.h"
 #include "grow/triangle_geometry.h"
+#include "pipeline.h"
 #include "samples/samples.h"
 #include "surface/surface.h"
 
@@ -206,7 +206,7 @@ TEST_CASE("the open-surface test refuses candidates and records why the edges st
     for (uint32_t h = 0; h < 3 * setup.surface.face_count(); ++h) {
         if (!setup.surface.is_boundary(h)) continue;
         ++boundary;
-        open += grower.boundary_cause(h) == BOUNDARY_OPEN ? 1 : 0;
+        open += grower.boundary_causes().of(h) == BOUNDARY_OPEN ? 1 : 0;
     }
     CHECK(boundary > 50);
     CHECK(open > boundary / 2);
@@ -266,8 +266,7 @@ TEST_CASE("hole filling makes the flips growing deferred, and those around the f
         REQUIRE(grower.grow() == DBRG_OK);
         REQUIRE(boundary_halfedges(setup.surface) > 0);
         const uint32_t flips_while_growing = grower.edge_flips().flip_count();
-        HoleFiller filler(setup.delaunay, setup.surface, grower, setup.context);
-        REQUIRE(filler.fill() == DBRG_OK);
+        REQUIRE(fill_holes(setup.delaunay, setup.surface, grower, setup.context) == DBRG_OK);
         CHECK(boundary_halfedges(setup.surface) == 0);
         const FlipsLeft left = flips_left(grower, setup.surface);
         CHECK(left.flips == 0);
@@ -285,8 +284,7 @@ TEST_CASE("after hole filling no flip is left on closed shapes, and both sides o
             Setup setup(samples::sample(shape, 3000, seed));
             RegionGrower grower(setup.delaunay, setup.surface, setup.context);
             REQUIRE(grower.grow() == DBRG_OK);
-            HoleFiller filler(setup.delaunay, setup.surface, grower, setup.context);
-            REQUIRE(filler.fill() == DBRG_OK);
+            REQUIRE(fill_holes(setup.delaunay, setup.surface, grower, setup.context) == DBRG_OK);
             const FlipsLeft left = flips_left(grower, setup.surface);
             CHECK(left.flips == 0);
             CHECK(left.one_sided == 0);

@@ -14,7 +14,6 @@
 #include "grow/edge_ring.h"
 #include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
-#include "predicates/predicates.h"
 
 namespace dbrg {
 namespace {
@@ -48,14 +47,14 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       cos_sliver_(cos(context.params.sliver_angle)),
       queue_(context.memory),
       postponed_(context.memory),
-      open_(context.memory),
+      causes_(context.memory),
       flipper_(delaunay, surface, context) {}
 
 dbrg_status RegionGrower::grow() {
     const uint32_t n = delaunay_.vertex_count();
     // A closed surface through all n points has 2n - 4 faces: reserve that at once rather than grow by halves.
     const size_t expected_faces = 2 * size_t(n);
-    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !open_.reserve((3 * expected_faces + 7) / 8)) {
+    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
         return context_.fail_out_of_memory();
     }
 
@@ -188,12 +187,12 @@ dbrg_status RegionGrower::drain_queue() {
         ++stats.candidates_evaluated;
         double smoothness;
         FaceCheck check;
-        const Verdict verdict = examine(c, smoothness, check);
-        if (verdict == Verdict::pinch && !c.postponed) {
+        const CandidateVerdict verdict = examine(c, smoothness, check);
+        if (verdict == CandidateVerdict::pinch && !c.postponed) {
             DBRG_PROPAGATE(postpone(c));
             continue;
         }
-        if (verdict != Verdict::valid && verdict != Verdict::pinch) {
+        if (verdict != CandidateVerdict::valid && verdict != CandidateVerdict::pinch) {
             DBRG_PROPAGATE(reject(c, verdict));
             continue;
         }
@@ -208,7 +207,7 @@ dbrg_status RegionGrower::drain_queue() {
                 DBRG_PROPAGATE(postpone(c));
             } else {
                 ++stats.rejected_boundary;
-                open_[c.halfedge / 8] |= uint8_t(1u << c.halfedge % 8);
+                causes_.mark_open(c.halfedge);
             }
             continue;
         }
@@ -248,15 +247,15 @@ bool RegionGrower::enqueue(const Candidate& c) {
     return queue_.push(c);
 }
 
-dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
+dbrg_status RegionGrower::reject(const Candidate& c, CandidateVerdict verdict) {
     dbrg_stats& stats = context_.stats;
     switch (verdict) {
-    case Verdict::edge_nonmanifold: ++stats.rejected_edge_nonmanifold; break;
-    case Verdict::orientation: ++stats.rejected_orientation; break;
-    case Verdict::bowtie: ++stats.rejected_bowtie; break;
-    case Verdict::dihedral: ++stats.rejected_dihedral; break;
-    case Verdict::valid:
-    case Verdict::pinch: break;
+    case CandidateVerdict::edge_nonmanifold: ++stats.rejected_edge_nonmanifold; break;
+    case CandidateVerdict::orientation: ++stats.rejected_orientation; break;
+    case CandidateVerdict::bowtie: ++stats.rejected_bowtie; break;
+    case CandidateVerdict::dihedral: ++stats.rejected_dihedral; break;
+    case CandidateVerdict::valid:
+    case CandidateVerdict::pinch: break;
     }
     // The edge moves on to its next-best candidate (§3.2.2).
     const CandidateRank rejected = rank(c);
@@ -314,15 +313,15 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
 // half-edge u->v: no edge with a third face, compatible orientation, no neck that can never heal, and
 // dihedral angles with every neighbour in S below theta_sliver. Also computes the local smooth degree
 // (§3.1.3) over the neighbours the triangle would have.
-RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness, FaceCheck& check) const {
+RegionGrower::CandidateVerdict RegionGrower::examine(const Candidate& c, double& smoothness, FaceCheck& check) const {
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
     const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
     check = surface_.check_face(v, u, c.apex);
     smoothness = dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(c.halfedge)));
     switch (check.verdict) {
-    case FaceCheck::edge_nonmanifold: return Verdict::edge_nonmanifold;
-    case FaceCheck::orientation: return Verdict::orientation;
-    case FaceCheck::bowtie: return Verdict::bowtie;
+    case FaceCheck::edge_nonmanifold: return CandidateVerdict::edge_nonmanifold;
+    case FaceCheck::orientation: return CandidateVerdict::orientation;
+    case FaceCheck::bowtie: return CandidateVerdict::bowtie;
     case FaceCheck::valid: break;
     }
     double cos_sum = 0;
@@ -336,9 +335,9 @@ RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothne
         ++neighbours;
     }
     smoothness = cos_sum / neighbours;
-    if (too_sharp) return Verdict::dihedral;
+    if (too_sharp) return CandidateVerdict::dihedral;
     // Touching S at a vertex alone pinches it: needed where two fronts meet, but only once nothing better is left.
-    return check.pinches > 0 ? Verdict::pinch : Verdict::valid;
+    return check.pinches > 0 ? CandidateVerdict::pinch : CandidateVerdict::valid;
 }
 
 // §4: a candidate much larger than the triangles of S spans an opening of an open surface.
@@ -391,10 +390,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
     const double r = circumradius(pa, pb, pc);
     radius_sum_ += r;
-    cause_halfedges_ = 3 * (f + 1);
-    if (!open_.resize((size_t(cause_halfedges_) + 7) / 8, 0)) {
-        return context_.fail_out_of_memory();
-    }
+    if (!causes_.cover_faces(f + 1)) return context_.fail_out_of_memory();
     DBRG_PROPAGATE(report_step());
     for (uint32_t i = 0; i < 3; ++i) {
         if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, nullptr));
@@ -411,7 +407,7 @@ dbrg_status RegionGrower::regrow_holes() {
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
     for (uint32_t h = 0; h < halfedges; ++h) {
-        if (surface_.is_boundary(h) && boundary_cause(h) == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
+        if (surface_.is_boundary(h) && causes_.of(h) == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
     }
     DBRG_PROPAGATE(grow_component());
     release_queues();

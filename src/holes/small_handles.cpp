@@ -383,7 +383,12 @@ dbrg_status HoleFiller::remove_small_handles() {
         handles_removed_ += removed_this_round;
         if (removed_this_round == 0) break;
     }
-    return memory.failed() ? context_.fail_out_of_memory() : DBRG_OK;
+    if (memory.failed()) return context_.fail_out_of_memory();
+    dbrg_stats& stats = context_.stats;
+    stats.handles_removed = handles_removed_;
+    stats.hole_triangles_added += handle_triangles_added_;
+    stats.hole_triangles_removed += handle_triangles_removed_;
+    return DBRG_OK;
 }
 
 double HoleFiller::length_between(uint32_t a, uint32_t b) const {

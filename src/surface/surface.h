@@ -105,6 +105,12 @@ public:
     template <class Visit>
     bool walk_vertex(uint32_t v, Visit&& visit) const;
 
+    // The one walk along a boundary loop: calls visit(h) for each boundary half-edge of the loop through
+    // boundary half-edge `start`, in order (fan_exit), until the loop comes back to `start`. visit may
+    // return void, or bool: false stops the walk. Returns false when a visit stopped it.
+    template <class Visit>
+    bool walk_loop(uint32_t start, Visit&& visit) const;
+
     // The half-edge from a to b, or NO_HALFEDGE. O(degree of a).
     uint32_t find_halfedge(uint32_t a, uint32_t b) const;
     // The outgoing boundary half-edge that ends the fan entered by the incoming boundary half-edge h.
@@ -189,6 +195,16 @@ bool Surface::walk_fan(uint32_t start, Visit&& visit) const {
         if (!surface_detail::keep_walking(visit, h)) return false;
         h = rotate(h);
     } while (h != NO_HALFEDGE && h != start);
+    return true;
+}
+
+template <class Visit>
+bool Surface::walk_loop(uint32_t start, Visit&& visit) const {
+    uint32_t h = start;
+    do {
+        if (!surface_detail::keep_walking(visit, h)) return false;
+        h = fan_exit(h);
+    } while (h != start);
     return true;
 }
 
