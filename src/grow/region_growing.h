@@ -33,7 +33,7 @@ public:
     dbrg_status regrow_holes();
 
     // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
-    // those around the faces added since: for once the holes are closed.
+    // those around the faces added since: the last step of hole filling, once the holes are closed.
     dbrg_status flip_deferred() { return flipper_.flip_deferred(); }
     const EdgeFlipper& edge_flips() const { return flipper_; }
 

@@ -423,12 +423,11 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
         }
         DBRG_PROPAGATE(remove_and_record(f, journal));
     }
-    // A cut that leaves a vertex with two sheets is not a clean cut along the cycle: put it back. (Cutting
-    // the pinches off too, and undoing that when the fill failed, corrupted the surface: found by fuzzing.)
+    // A cut that leaves a vertex with two sheets is not a clean cut along the cycle: put it back.
     if (surface_.pinched_vertex_count() > pinched_before) return undo(journal, 0);
 
-    // Fill every loop the removal opened, without enlargement: that changed nothing on the data when a
-    // hang found by fuzzing (a fault of the journal's undo, since fixed) had it dropped.
+    // Fill every loop the removal opened over its own vertices: on the data sets, enlarging fills no cut
+    // loop that ears alone leave open.
     filling_cut_ = true;
     bool all_filled = true;
     dbrg_status status = DBRG_OK;
