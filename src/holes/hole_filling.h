@@ -27,7 +27,8 @@ public:
     // change in between (regrowing adds faces with causes of their own).
     HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes, Context& context);
 
-    // Counts the holes (is_hole) into context.stats.holes_found; `found` tells whether there are any.
+    // Counts the holes (is_hole) into context.stats.holes_found; `found` tells whether there are any, and
+    // when there are, the stage's progress starts.
     dbrg_status find_holes(bool& found);
 
     // Fills every hole of at most params.max_hole_edges edges that can be filled validly with ears,
