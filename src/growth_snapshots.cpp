@@ -14,7 +14,7 @@ void GrowthSnapshots::attach(RegionGrower& grower) {
 
 dbrg_status GrowthSnapshots::on_step(void* self, const Surface& surface, double points_reached) {
     GrowthSnapshots& snapshots = *static_cast<GrowthSnapshots*>(self);
-    if (snapshots.finished_) return DBRG_OK;  // hole filling grows S again through the same grower
+    if (snapshots.finished_) return DBRG_OK;  // hole filling's regrow_holes grows S through the same grower
     const uint32_t asked = snapshots.context_.params.snapshot_count;
     const uint32_t count = asked < DBRG_MAX_SNAPSHOTS ? asked : DBRG_MAX_SNAPSHOTS;
     // Thresholds 1/K .. (K - 1)/K while growing; finish() takes the K-th. A step that passes several

@@ -2,11 +2,10 @@
 // holes — and hands the results over in the caller's point indexing.
 #include "pipeline.h"
 
-#include <algorithm>
-
 #include "core/point_input.h"
 #include "core/status.h"
 #include "delaunay/backend.h"
+#include "delaunay/canonical_order.h"
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
@@ -38,73 +37,23 @@ dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& contex
                                     delaunay);
 }
 
-// Which components to turn over: the closed ones (no boundary half-edge) whose signed volume is negative.
-dbrg_status find_inward_components(const Surface& surface, const ConditionedPoints& points, Context& context,
-                                   Array<uint32_t>& face_component, Array<uint8_t>& flip) {
-    const uint32_t components = surface.label_components(face_component);
-    if (components == NO_FACE) return context.fail_out_of_memory();
-    Array<double> volume(context.memory);
-    Array<uint8_t> open(context.memory);
-    if (!volume.resize(components, 0.0) || !open.resize(components, 0) || !flip.resize(components, 0)) {
-        return context.fail_out_of_memory();
-    }
-    for (uint32_t f = 0; f < surface.face_count(); ++f) {
-        const uint32_t k = face_component[f];
-        if (k == NO_FACE) continue;
-        for (uint32_t i = 0; i < 3; ++i) open[k] |= surface.is_boundary(3 * f + i) ? 1 : 0;
-        const Vec3 a = load_vec3(points.point(surface.corner(f, 0)));
-        const Vec3 b = load_vec3(points.point(surface.corner(f, 1)));
-        const Vec3 c = load_vec3(points.point(surface.corner(f, 2)));
-        volume[k] += dot(a, cross(b, c));
-    }
-    for (uint32_t k = 0; k < components; ++k) flip[k] = !open[k] && volume[k] < 0;
-    context.stats.components = components;
-    return DBRG_OK;
-}
-
-// Triangles in the caller's indices, closed components turned outward, and the boundary loops.
-dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& conditioned, Context& context,
-                         SurfaceResult& result) {
-    const uint32_t faces = surface.face_count();
-    Array<uint32_t> face_component(context.memory);
-    Array<uint8_t> flip(context.memory);
-    DBRG_PROPAGATE(find_inward_components(surface, conditioned, context, face_component, flip));
-    if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
-    for (uint32_t f = 0; f < faces; ++f) {
-        if (surface.face_removed(f)) continue;
-        const bool turn = flip[face_component[f]] != 0;
-        result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
-        result.triangles.push_back(conditioned.input_index[surface.corner(f, turn ? 2 : 1)]);
-        result.triangles.push_back(conditioned.input_index[surface.corner(f, turn ? 1 : 2)]);
-    }
-    // Boundary loops: from a boundary half-edge u->v, the loop continues with the half-edge that leaves
-    // v's fan. (Only closed components are turned over, and they have no loops.)
-    Array<uint8_t> visited(context.memory);
-    if (!visited.resize(3 * size_t(faces), 0) || !result.loop_offsets.push_back(0)) return context.fail_out_of_memory();
-    uint32_t boundary_edges = 0;
-    for (uint32_t start = 0; start < 3 * faces; ++start) {
-        if (!surface.is_boundary(start) || visited[start]) continue;
-        uint32_t h = start;
-        do {
-            visited[h] = 1;
-            ++boundary_edges;
-            if (!result.loop_vertices.push_back(conditioned.input_index[surface.origin(h)])) return context.fail_out_of_memory();
-            h = surface.fan_exit(h);
-        } while (h != start);
-        if (!result.loop_offsets.push_back(static_cast<uint32_t>(result.loop_vertices.size()))) {
-            return context.fail_out_of_memory();
-        }
-    }
-    uint32_t vertices_used = 0;
-    for (uint32_t v = 0; v < surface.vertex_count(); ++v) vertices_used += surface.is_used(v) ? 1 : 0;
-    context.stats.triangles = surface.live_face_count();
-    context.stats.vertices_used = vertices_used;
-    context.stats.boundary_edges = boundary_edges;
-    context.stats.boundary_loops = static_cast<uint32_t>(result.loop_offsets.size() - 1);
-    return DBRG_OK;
-}
-
 } // namespace
+
+dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context) {
+    HoleFiller filler(delaunay, surface, grower.boundary_causes(), context);
+    bool holes = false;
+    DBRG_PROPAGATE(filler.find_holes(holes));
+    if (holes) {
+        // Delaunay triangles first, as growing would attach them: S has changed around the holes since
+        // their edges were last examined. Then ears over what is left.
+        DBRG_PROPAGATE(grower.regrow_holes());
+        DBRG_PROPAGATE(filler.fill_with_ears());
+    }
+    DBRG_PROPAGATE(filler.remove_small_handles());
+    // Growing's flips passed over the edges with a corner on a hole's rim: the holes are closed, and what is
+    // around the filled holes has changed.
+    return grower.flip_deferred();
+}
 
 dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, SurfaceResult& result) {
     ConditionedPoints conditioned(context.memory);
@@ -127,8 +76,7 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
 
         if (context.params.fill_holes) {
             start = seconds_now();
-            HoleFiller filler(delaunay, surface, grower, context);
-            DBRG_PROPAGATE(filler.fill());
+            DBRG_PROPAGATE(fill_holes(delaunay, surface, grower, context));
             context.stats.seconds_fill_holes = seconds_now() - start;
         }
     }
@@ -145,65 +93,8 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     Tetrahedralization delaunay(context.memory);
     DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
 
-    // Finite tetrahedra are numbered in the order of their canonical corners (counting sort by the first,
-    // then the few that share it by the other three), and written with their corners in that order: the
-    // output is the same whichever slots construction left them in (threads leave them in other slots).
-    const uint32_t slots = delaunay.tet_slots();
-    const auto corners = [&](uint32_t t, uint32_t local[4], uint32_t vertex[4]) {
-        delaunay.canonical_corners(t, local);
-        for (uint32_t i = 0; i < 4; ++i) vertex[i] = delaunay.tet_vertex(t, local[i]);
-    };
-    Array<uint32_t> bucket_end(context.memory);  // per smallest corner
-    Array<uint32_t> order(context.memory);
-    Array<uint32_t> number(context.memory);
-    if (!bucket_end.resize(size_t(delaunay.vertex_count()) + 1, 0) || !number.resize(slots, DBRG_NO_NEIGHBOR)) {
-        return context.fail_out_of_memory();
-    }
-    // The first canonical corner is the smallest vertex: the counting sort needs no more than that.
-    const auto smallest = [&](uint32_t t) {
-        return std::min(std::min(delaunay.tet_vertex(t, 0), delaunay.tet_vertex(t, 1)),
-                        std::min(delaunay.tet_vertex(t, 2), delaunay.tet_vertex(t, 3)));
-    };
-    uint32_t local[4], vertex[4], finite = 0;
-    for (uint32_t t = 0; t < slots; ++t) {
-        if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
-        ++bucket_end[smallest(t) + 1];
-        ++finite;
-    }
-    for (size_t v = 1; v < bucket_end.size(); ++v) bucket_end[v] += bucket_end[v - 1];
-    if (!order.resize(finite)) return context.fail_out_of_memory();
-    for (uint32_t t = 0; t < slots; ++t) {
-        if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
-        order[bucket_end[smallest(t)]++] = t;  // bucket_end[v] ends as the end of v's bucket
-    }
-    // Within a bucket, by the other three corners, each tetrahedron's computed once.
-    struct Keyed {
-        uint32_t rest[3];
-        uint32_t slot;
-    };
-    Array<Keyed> bucket(context.memory);
-    for (size_t v = 0, begin = 0; v < delaunay.vertex_count(); begin = bucket_end[v++]) {
-        bucket.clear();
-        for (size_t i = begin; i < bucket_end[v]; ++i) {
-            corners(order[i], local, vertex);
-            if (!bucket.push_back(Keyed{{vertex[1], vertex[2], vertex[3]}, order[i]})) return context.fail_out_of_memory();
-        }
-        std::sort(bucket.begin(), bucket.end(), [](const Keyed& x, const Keyed& y) {
-            return std::lexicographical_compare(x.rest, x.rest + 3, y.rest, y.rest + 3);
-        });
-        for (size_t i = begin; i < bucket_end[v]; ++i) order[i] = bucket[i - begin].slot;
-    }
-    for (uint32_t i = 0; i < finite; ++i) number[order[i]] = i;
-    if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {
-        return context.fail_out_of_memory();
-    }
-    for (uint32_t i = 0; i < finite; ++i) {
-        corners(order[i], local, vertex);
-        for (uint32_t k = 0; k < 4; ++k) {
-            result.tets[4 * size_t(i) + k] = conditioned.input_index[vertex[k]];
-            result.adjacency[4 * size_t(i) + k] = number[delaunay.tet_adjacent(order[i], local[k])];
-        }
-    }
+    DBRG_PROPAGATE(write_canonical_tetrahedra(delaunay, conditioned.input_index.data(), context, result.tets,
+                                              result.adjacency));
     result.unique_points = conditioned.size();
     return context.report(DBRG_STAGE_OUTPUT, 1.0);
 }

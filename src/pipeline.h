@@ -4,15 +4,13 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "surface_output.h"
 
 namespace dbrg {
 
-struct SurfaceResult {
-    explicit SurfaceResult(Memory& memory) : triangles(memory), loop_offsets(memory), loop_vertices(memory) {}
-    Array<uint32_t> triangles;      // 3 per triangle, caller's indices
-    Array<uint32_t> loop_offsets;   // loop i is loop_vertices[loop_offsets[i] .. loop_offsets[i + 1])
-    Array<uint32_t> loop_vertices;  // caller's indices
-};
+class RegionGrower;
+class Surface;
+class Tetrahedralization;
 
 struct TetrahedraResult {
     explicit TetrahedraResult(Memory& memory) : tets(memory), adjacency(memory) {}
@@ -27,5 +25,10 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
 
 // Tetrahedralizes the points with context.params.backend.
 dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, TetrahedraResult& result);
+
+// The hole-filling stage of reconstruct_surface, on S as `grower` left it: Delaunay triangles over the holes
+// (RegionGrower::regrow_holes), then ears (HoleFiller), small handles removed, and last the flips growing
+// deferred (RegionGrower::flip_deferred). Fills the hole and handle fields of context.stats.
+dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
 
 } // namespace dbrg

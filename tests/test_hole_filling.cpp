@@ -1,34 +1,71 @@
-// Unit tests of hole filling's undo log (FaceJournal): any interleaving of additions and removals is
-// taken back exactly.
+// Unit tests of hole filling: each of its rules on a small surface made by hand (the ears start at
+// concave corners, a hole that cannot be filled is enlarged, short handles are cut, the boundary's edges
+// vote on whether a loop is a hole), and its undo log (FaceJournal), which takes any interleaving of
+// additions and removals back exactly.
 #include <doctest/doctest.h>
+
+#include <math.h>
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <vector>
 
+#include "core/params.h"
+#include "core/pi.h"
+#include "delaunay/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
+#include "grow/boundary_causes.h"
 #include "holes/face_journal.h"
+#include "holes/hole_filling.h"
 
 using namespace dbrg;
 
 namespace {
 
-constexpr uint32_t N = 6;  // the torus grid is N x N vertices
 
-uint32_t grid_vertex(uint32_t i, uint32_t j) { return (i % N) * N + j % N; }
+using Triangle = std::array<uint32_t, 3>;
 
-// A closed torus: two faces per grid square, each remembering its square as its tetrahedron.
-void build_torus(Surface& surface) {
-    REQUIRE(surface.reset(N * N));
-    for (uint32_t i = 0; i < N; ++i) {
-        for (uint32_t j = 0; j < N; ++j) {
-            const uint32_t a = grid_vertex(i, j), b = grid_vertex(i + 1, j), c = grid_vertex(i + 1, j + 1),
-                           d = grid_vertex(i, j + 1);
-            REQUIRE(surface.add_face(a, b, c, a) != NO_FACE);
-            REQUIRE(surface.add_face(a, c, d, a) != NO_FACE);
+// A torus grid of major x minor vertices, vertex (i, j) numbered i * minor + j (indices taken modulo the
+// grid), two faces per grid square, oriented outward for torus_points.
+uint32_t torus_vertex(uint32_t major, uint32_t minor, uint32_t i, uint32_t j) { return (i % major) * minor + j % minor; }
+
+std::vector<Triangle> torus_faces(uint32_t major, uint32_t minor) {
+    std::vector<Triangle> faces;
+    for (uint32_t i = 0; i < major; ++i) {
+        for (uint32_t j = 0; j < minor; ++j) {
+            const uint32_t a = torus_vertex(major, minor, i, j), b = torus_vertex(major, minor, i + 1, j),
+                           c = torus_vertex(major, minor, i + 1, j + 1), d = torus_vertex(major, minor, i, j + 1);
+            faces.push_back({a, b, c});
+            faces.push_back({a, c, d});
         }
     }
+    return faces;
 }
+
+// Vertex (i, j) at angle 2 pi i / major around the z axis and 2 pi j / minor around the tube.
+std::vector<double> torus_points(uint32_t major, uint32_t minor, double radius, double tube_radius) {
+    std::vector<double> xyz;
+    for (uint32_t i = 0; i < major; ++i) {
+        for (uint32_t j = 0; j < minor; ++j) {
+            const double theta = 2 * PI * i / major, phi = 2 * PI * j / minor;
+            const double ring = radius + tube_radius * cos(phi);
+            xyz.insert(xyz.end(), {ring * cos(theta), ring * sin(theta), tube_radius * sin(phi)});
+        }
+    }
+    return xyz;
+}
+
+constexpr uint32_t N = 6;  // the journal's torus grid is N x N vertices
+
+// A closed torus without points: two faces per grid square, each remembering its first corner as its
+// tetrahedron.
+void build_torus(Surface& surface) {
+    REQUIRE(surface.reset(N * N));
+    for (const Triangle& t : torus_faces(N, N)) REQUIRE(surface.add_face(t[0], t[1], t[2], t[0]) != NO_FACE);
+}
+
+uint32_t grid_vertex(uint32_t i, uint32_t j) { return torus_vertex(N, N, i, j); }
 
 void require_valid(const Surface& surface) {
     char message[200] = "";
@@ -137,4 +174,272 @@ TEST_CASE("an enlargement that removes faces its own fill added is undone exactl
     CHECK(journal.size() == 0);
     CHECK(surface.live_face_count() == 2 * N * N);
     CHECK(snapshot(surface) == original);
+}
+
+namespace {
+
+// A surface made by hand over hand-placed points, ready for hole filling: the points are conditioned and
+// tetrahedralized as the pipeline does (hole filling reads them through the tetrahedralization), and the
+// faces, given in the points' own numbering, have no tetrahedron. Every boundary edge counts as one where
+// growing found only invalid candidates until mark_open says otherwise.
+struct HandMade {
+    HandMade(const std::vector<double>& xyz, const std::vector<Triangle>& faces, uint32_t max_hole_edges = 64)
+        : context(params_with(max_hole_edges)),
+          points(context.memory),
+          delaunay(context.memory),
+          surface(context.memory),
+          causes(context.memory) {
+        REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
+        REQUIRE(points.size() == xyz.size() / 3);
+        REQUIRE(delaunay.build(points.coordinates.data(), points.size(), context) == DBRG_OK);
+        vertex.resize(points.size());
+        for (uint32_t v = 0; v < points.size(); ++v) vertex[points.input_index[v]] = v;
+        REQUIRE(surface.reset(points.size()));
+        for (const Triangle& t : faces) REQUIRE(surface.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]], NO_TET) != NO_FACE);
+        require_valid(surface);
+    }
+    static dbrg_params params_with(uint32_t max_hole_edges) {
+        dbrg_params params;
+        fill_default_params(params);
+        params.max_hole_edges = max_hole_edges;
+        return params;
+    }
+
+    // The half-edge from point a to point b.
+    uint32_t halfedge(uint32_t a, uint32_t b) const { return surface.find_halfedge(vertex[a], vertex[b]); }
+    bool has_face(uint32_t a, uint32_t b, uint32_t c) const {
+        const uint32_t h = halfedge(a, b);
+        return h != NO_HALFEDGE && surface.target(Surface::next(h)) == vertex[c];
+    }
+    // Records that growing left boundary half-edge h open because the open-surface test refused its candidate.
+    void mark_open(uint32_t h) {
+        REQUIRE(surface.is_boundary(h));
+        REQUIRE(causes.cover_faces(surface.face_count()));
+        causes.mark_open(h);
+    }
+    uint32_t boundary_halfedges() const {
+        uint32_t count = 0;
+        for (uint32_t h = 0; h < 3 * surface.face_count(); ++h) count += surface.is_boundary(h) ? 1 : 0;
+        return count;
+    }
+    // The genus of S, a closed connected surface: V - E + F = 2 - 2 g.
+    int genus() {
+        REQUIRE(boundary_halfedges() == 0);
+        Array<uint32_t> components(context.memory);
+        REQUIRE(surface.label_components(components) == 1);
+        const int64_t v = surface.used_vertex_count(), f = surface.live_face_count(), e = 3 * f / 2;
+        return int((2 - (v - e + f)) / 2);
+    }
+
+    // Hole filling's own steps in the pipeline's order; the grower's Delaunay pass has no tetrahedra to
+    // start from on these faces.
+    void fill_holes() {
+        HoleFiller filler(delaunay, surface, causes, context);
+        bool found = false;
+        REQUIRE(filler.find_holes(found) == DBRG_OK);
+        if (found) REQUIRE(filler.fill_with_ears() == DBRG_OK);
+        REQUIRE(filler.remove_small_handles() == DBRG_OK);
+        require_valid(surface);
+    }
+
+    Context context;
+    ConditionedPoints points;
+    Tetrahedralization delaunay;
+    Surface surface;
+    BoundaryCauses causes;
+    std::vector<uint32_t> vertex;  // of each point given
+};
+
+} // namespace
+
+TEST_CASE("ears start at concave corners: the tip of a cone waits though its ear is the smallest valid one") {
+    // A steep cone (tip p, ring q0 .. q7) with a wedge cut out between q7 and q0, a strip of faces around
+    // the ring and a corner c outside the ring, level with the tip, so that the hole is the loop p, q0, c,
+    // q7. Across the cone's tip, the faces average to a normal that points away from the wedge: p's ear
+    // (p, q7, q0) faces against it, so p is no concave corner (paper §5), though that ear is valid and of
+    // all valid ears the one with the smallest circumradius. The concave corners q0 and q7 have valid ears
+    // too, so the hole is closed from them, along the diagonal p-c rather than q0-q7.
+    const uint32_t ring = 8, p = 0, c = 1;  // q_k is 2 + k, and the strip's outer corner of ring corner x is x + ring + 1
+    const auto q = [](uint32_t k) { return 2 + k; };
+    const auto outer = [&](uint32_t x) { return x + ring + 1; };
+    const double alpha = PI / 4;
+    std::vector<double> xyz = {0, 0, 2, 1.6, 0, 2};
+    for (uint32_t k = 0; k < ring; ++k) {
+        const double phi = alpha + (2 * PI - 2 * alpha) * k / (ring - 1);
+        xyz.insert(xyz.end(), {cos(phi), sin(phi), 0});
+    }
+    // The ring goes round c, q0, ..., q7 (counter-clockwise from above); the strip's outer corners lie
+    // further out and lower.
+    std::vector<uint32_t> around = {c};
+    for (uint32_t k = 0; k < ring; ++k) around.push_back(q(k));
+    for (uint32_t x : around) {
+        const double* point = &xyz[3 * x];
+        const double angle = atan2(point[1], point[0]), z = point[2] - 0.6;
+        xyz.insert(xyz.end(), {1.6 * cos(angle), 1.6 * sin(angle), z});
+    }
+    std::vector<Triangle> faces;
+    for (uint32_t k = 0; k + 1 < ring; ++k) faces.push_back({p, q(k), q(k + 1)});
+    for (size_t i = 0; i < around.size(); ++i) {
+        const uint32_t x = around[i], y = around[(i + 1) % around.size()];
+        faces.push_back({x, outer(x), outer(y)});
+        faces.push_back({x, outer(y), y});
+    }
+    HandMade made(xyz, faces, 8);
+    // The outer rim is the surface's border.
+    const uint32_t rim = made.halfedge(outer(c), outer(q(0)));
+    REQUIRE(rim != NO_HALFEDGE);
+    made.surface.walk_loop(rim, [&](uint32_t h) { made.mark_open(h); });
+    REQUIRE(made.surface.is_boundary(made.halfedge(p, q(0))));
+
+    made.fill_holes();
+    CHECK(made.context.stats.holes_found == 1);
+    CHECK(made.context.stats.holes_filled == 1);
+    CHECK(made.boundary_halfedges() == around.size());  // the border
+    CHECK_FALSE(made.has_face(p, q(ring - 1), q(0)));
+    CHECK(made.has_face(q(0), p, c));
+    CHECK(made.has_face(p, q(ring - 1), c));
+}
+
+namespace {
+
+// The surface of the cube [0, 4]^3, a grid of squares of side 2 split along a diagonal, with a crack: in
+// one square, the face on one side of the diagonal a-b is split at the diagonal's midpoint m, so a hole
+// a, m, b has three corners on a line. With `open_face`, the face (m, b, d) of the split is missing too.
+struct CrackedCube {
+    explicit CrackedCube(bool open_face);
+    uint32_t a, b, m, d;  // points
+    std::vector<double> xyz;
+    std::vector<Triangle> faces;
+};
+
+CrackedCube::CrackedCube(bool open_face) {
+    std::map<std::array<int, 3>, uint32_t> index;
+    const auto point = [&](std::array<int, 3> at) {
+        const auto found = index.find(at);
+        if (found != index.end()) return found->second;
+        xyz.insert(xyz.end(), {double(at[0]), double(at[1]), double(at[2])});
+        return index[at] = uint32_t(index.size());
+    };
+    for (int axis = 0; axis < 3; ++axis) {
+        for (int side : {0, 4}) {
+            // u x v points out of the cube.
+            const int u = side ? (axis + 1) % 3 : (axis + 2) % 3, v = side ? (axis + 2) % 3 : (axis + 1) % 3;
+            const auto corner = [&](int i, int j) {
+                std::array<int, 3> at{};
+                at[axis] = side;
+                at[u] = 2 * i;
+                at[v] = 2 * j;
+                return point(at);
+            };
+            for (int i = 0; i < 2; ++i) {
+                for (int j = 0; j < 2; ++j) {
+                    faces.push_back({corner(i, j), corner(i + 1, j), corner(i + 1, j + 1)});
+                    faces.push_back({corner(i, j), corner(i + 1, j + 1), corner(i, j + 1)});
+                }
+            }
+        }
+    }
+    // The square from a = (0, 0, 0) to b = (2, 2, 0) on the bottom, whose second face is (a, b, d).
+    a = point({0, 0, 0});
+    b = point({2, 2, 0});
+    m = point({1, 1, 0});
+    const auto second = std::find_if(faces.begin(), faces.end(), [&](const Triangle& t) { return t[0] == a && t[1] == b; });
+    REQUIRE(second != faces.end());
+    d = (*second)[2];
+    faces.erase(second);
+    faces.push_back({a, m, d});
+    if (!open_face) faces.push_back({m, b, d});
+}
+
+} // namespace
+
+TEST_CASE("a hole that cannot be filled over its own corners is enlarged by its rim's faces and filled") {
+    // The crack a, m, b has one ear, of no area: no ear over its own corners is valid (paper §5). Removing
+    // the three faces around it leaves the square, which two ears close.
+    CrackedCube crack(false);
+    HandMade made(crack.xyz, crack.faces);
+    REQUIRE(made.boundary_halfedges() == 3);
+    made.fill_holes();
+    CHECK(made.context.stats.holes_filled == 1);
+    CHECK(made.context.stats.hole_triangles_removed == 3);
+    CHECK(made.context.stats.hole_triangles_added == 2);
+    CHECK(made.boundary_halfedges() == 0);
+    CHECK_FALSE(made.surface.is_used(made.vertex[crack.m]));
+    CHECK(made.genus() == 0);
+}
+
+TEST_CASE("the ears of a failed attempt are taken back before the hole is enlarged") {
+    // The hole b, a, m, d takes the ear (d, m, b), and then only (b, a, m), of no area, is left: the
+    // attempt fails, its ear is taken back, and the larger hole is filled instead, without m. The rim is
+    // the three faces on the hole's four edges ((a, m, d) has two), and the larger hole has five corners.
+    CrackedCube crack(true);
+    HandMade made(crack.xyz, crack.faces);
+    REQUIRE(made.boundary_halfedges() == 4);
+    made.fill_holes();
+    CHECK(made.context.stats.holes_filled == 1);
+    CHECK(made.context.stats.hole_triangles_removed == 3);
+    CHECK(made.context.stats.hole_triangles_added == 3);
+    CHECK(made.boundary_halfedges() == 0);
+    CHECK_FALSE(made.has_face(crack.d, crack.m, crack.b));
+    CHECK_FALSE(made.surface.is_used(made.vertex[crack.m]));
+    CHECK(made.genus() == 0);
+}
+
+TEST_CASE("a handle whose short cycles are short in space is cut and both sides are filled; a tube stays") {
+    struct Tube {
+        uint32_t major, minor;
+        double tube_radius;
+        bool noise;
+    };
+    // A tube with 3 edges around, thin against the edges along it, is the bridge growing builds across a
+    // gap narrower than the spacing. A tube with 4 edges around, as wide as long, is a coarse but real
+    // handle: its cycles are short in edges but not in space. With 8 edges around, none is short.
+    for (const Tube& tube : {Tube{12, 3, 0.1, true}, Tube{24, 4, 0.35, false}, Tube{12, 8, 0.4, false}}) {
+        CAPTURE(tube.minor);
+        HandMade made(torus_points(tube.major, tube.minor, 1.0, tube.tube_radius), torus_faces(tube.major, tube.minor));
+        REQUIRE(made.genus() == 1);
+        made.fill_holes();
+        CHECK(made.context.stats.handles_removed == (tube.noise ? 1 : 0));
+        CHECK(made.genus() == (tube.noise ? 0 : 1));
+    }
+}
+
+namespace {
+
+// A torus of 12 x 8 vertices with the six faces around one vertex removed: a hole of six edges.
+struct HoledTorus : HandMade {
+    explicit HoledTorus(uint32_t max_hole_edges)
+        : HandMade(torus_points(12, 8, 1.0, 0.4), torus_faces(12, 8), max_hole_edges) {
+        const uint32_t centre = vertex[torus_vertex(12, 8, 5, 2)];
+        std::vector<uint32_t> fan;
+        surface.walk_vertex(centre, [&](uint32_t h) { fan.push_back(Surface::face_of(h)); });
+        REQUIRE(fan.size() == 6);
+        for (uint32_t f : fan) REQUIRE(surface.remove_face(f));
+        for (uint32_t h = 0; h < 3 * surface.face_count(); ++h) {
+            if (surface.is_boundary(h)) loop.push_back(h);
+        }
+        REQUIRE(loop.size() == 6);
+    }
+    std::vector<uint32_t> loop;  // the hole's boundary half-edges
+};
+
+} // namespace
+
+TEST_CASE("a boundary loop is a hole unless most of its edges saw growing refuse a candidate as too large") {
+    // max_hole_edges 8 makes loops of at most 2 edges holes whatever their edges say (open_loop_limit).
+    for (uint32_t open_edges = 0; open_edges <= 6; ++open_edges) {
+        CAPTURE(open_edges);
+        HoledTorus torus(8);
+        for (uint32_t i = 0; i < open_edges; ++i) torus.mark_open(torus.loop[i]);
+        torus.fill_holes();
+        const bool hole = 2 * open_edges <= 6;  // a minority, or half, of the edges call it a border
+        CHECK(torus.context.stats.holes_found == (hole ? 1 : 0));
+        CHECK(torus.boundary_halfedges() == (hole ? 0 : 6));
+    }
+    // A loop this short is a hole all the same: a real border is long.
+    HoledTorus torus(24);
+    for (uint32_t h : torus.loop) torus.mark_open(h);
+    torus.fill_holes();
+    CHECK(torus.context.stats.holes_filled == 1);
+    CHECK(torus.genus() == 1);
 }

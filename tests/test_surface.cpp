@@ -1,7 +1,9 @@
 // Unit tests of the half-edge surface S: linking, fans, boundary bookkeeping, validation, truncation.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "surface/surface.h"
 
@@ -70,14 +72,19 @@ TEST_CASE("a closed fan makes its centre an interior vertex") {
     require_valid(surface);
     CHECK_FALSE(surface.is_boundary_vertex(0));
     CHECK(surface.is_boundary_vertex(1));
-    // Rotation from the centre's half-edge visits its five outgoing half-edges and returns.
-    uint32_t h = surface.vertex_halfedge(0), steps = 0;
-    do {
+    // The walk around the centre visits its five outgoing half-edges once each and comes back.
+    std::vector<uint32_t> targets;
+    CHECK(surface.walk_fan(surface.vertex_halfedge(0), [&](uint32_t h) {
         CHECK(surface.origin(h) == 0);
-        h = surface.rotate(h);
-        ++steps;
-    } while (h != surface.vertex_halfedge(0) && steps < 10);
-    CHECK(steps == 5);
+        targets.push_back(surface.target(h));
+        return targets.size() < 10;
+    }));
+    std::sort(targets.begin(), targets.end());
+    CHECK(targets == std::vector<uint32_t>{1, 2, 3, 4, 5});
+    // A visit that returns false stops it there.
+    uint32_t visits = 0;
+    CHECK_FALSE(surface.walk_vertex(0, [&](uint32_t) { return ++visits < 2; }));
+    CHECK(visits == 2);
 }
 
 TEST_CASE("two fans at one vertex pinch it until a face joins them") {
@@ -97,6 +104,11 @@ TEST_CASE("two fans at one vertex pinch it until a face joins them") {
         CHECK(surface.fan_size(start) == 1);
     });
     CHECK(fans == 2);
+    // The walk around a pinched vertex goes through every fan.
+    std::vector<uint32_t> targets;
+    CHECK(surface.walk_vertex(0, [&](uint32_t h) { targets.push_back(surface.target(h)); }));
+    std::sort(targets.begin(), targets.end());
+    CHECK(targets == std::vector<uint32_t>{1, 3});
     // Both edges of edge-face lookups work in either fan.
     CHECK(surface.find_halfedge(0, 1) != NO_HALFEDGE);
     CHECK(surface.find_halfedge(0, 3) != NO_HALFEDGE);

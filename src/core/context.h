@@ -16,7 +16,6 @@ public:
 
     // Returns false when the caller has asked to cancel (now or earlier).
     bool report(dbrg_stage stage, double fraction);
-    bool cancelled() const { return cancelled_; }
 
 private:
     dbrg_progress_fn callback_;

@@ -33,8 +33,8 @@ public:
     // flip_deferred. `radius_sum`, the sum of the circumradii of S's faces, follows the flips.
     dbrg_status flip_all(double& radius_sum);
 
-    // Visits the remembered edges again, and the edges of every face added since flip_all: hole filling
-    // calls it once the holes are closed, which changed what is around those edges.
+    // Visits the remembered edges again, and the edges of every face added since flip_all: for after hole
+    // filling, which closes the boundary those edges waited on and changes what is around them.
     dbrg_status flip_deferred();
 
     enum class Decision { keep, defer, flip };

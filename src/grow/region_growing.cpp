@@ -11,9 +11,9 @@
 
 #include "core/intrinsics.h"
 #include "core/status.h"
+#include "grow/edge_ring.h"
 #include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
-#include "predicates/predicates.h"
 
 namespace dbrg {
 namespace {
@@ -38,62 +38,6 @@ void orient_upward(const Tetrahedralization& delaunay, uint32_t corners[3]) {
     if (flip) std::swap(corners[1], corners[2]);
 }
 
-// One tetrahedron of the ring around an edge (u, v), read at once: its two vertices other than u and v,
-// their local indices, and its four neighbours.
-struct RingTet {
-    uint32_t others[2];
-    uint32_t local[2];
-    uint32_t adjacent[4];
-};
-
-inline RingTet read_ring_tet(const Tetrahedralization& delaunay, uint32_t t, uint32_t u, uint32_t v) {
-    RingTet r;
-    uint32_t vertex[4];
-    for (uint32_t i = 0; i < 4; ++i) vertex[i] = delaunay.tet_vertex(t, i);
-    for (uint32_t i = 0; i < 4; ++i) r.adjacent[i] = delaunay.tet_adjacent(t, i);
-    uint32_t n = 0;
-    for (uint32_t lv = 0; lv < 4; ++lv) {
-        if (vertex[lv] != u && vertex[lv] != v) {
-            r.others[n] = vertex[lv];
-            r.local[n++] = lv;
-        }
-    }
-    return r;
-}
-
-// Calls emit(apex, tet) for the same (apex, tet) pairs as Tetrahedralization::for_each_triangle_around_edge
-// from `start` (each tetrahedron of the ring with the triangle it shares with the next one), in another
-// order. Finding the next tetrahedron waits on a cache miss; the ring is walked from both sides of `start`
-// at once, so two of those misses are in flight together, and each tetrahedron's neighbours are read
-// together with its vertices rather than after them.
-template <class Emit>
-void walk_edge_ring(const Tetrahedralization& delaunay, uint32_t start, uint32_t u, uint32_t v, Emit&& emit) {
-    // Forward as for_each_triangle_around_edge: tetrahedron tf, whose apex is the vertex other than the one
-    // it shares with the previous tetrahedron (the first: others[0] unless that is NO_TET).
-    RingTet f = read_ring_tet(delaunay, start, u, v);
-    uint32_t tf = start, previous_apex = NO_TET;
-    const uint32_t first = f.others[0] == previous_apex ? 1 : 0;
-    // Backward: tetrahedron tb, entered through the face that holds `entered`, its apex in the forward order.
-    uint32_t tb = f.adjacent[f.local[first]], entered = f.others[1 - first];
-    RingTet b = read_ring_tet(delaunay, tb, u, v);
-    for (;;) {
-        const uint32_t k = f.others[0] == previous_apex ? 1 : 0;
-        emit(f.others[k], tf);
-        if (tf == tb) return;  // the sides met on one tetrahedron
-        const uint32_t next_f = f.adjacent[f.local[1 - k]];
-        emit(entered, tb);
-        if (next_f == tb) return;  // the sides met between two tetrahedra
-        const uint32_t j = b.others[0] == entered ? 0 : 1;
-        const uint32_t next_b = b.adjacent[b.local[j]];
-        previous_apex = f.others[k];
-        entered = b.others[1 - j];
-        tf = next_f;
-        tb = next_b;
-        f = read_ring_tet(delaunay, tf, u, v);
-        if (tb != tf) b = read_ring_tet(delaunay, tb, u, v);
-    }
-}
-
 } // namespace
 
 RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface, Context& context)
@@ -103,14 +47,14 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       cos_sliver_(cos(context.params.sliver_angle)),
       queue_(context.memory),
       postponed_(context.memory),
-      open_(context.memory),
+      causes_(context.memory),
       flipper_(delaunay, surface, context) {}
 
 dbrg_status RegionGrower::grow() {
     const uint32_t n = delaunay_.vertex_count();
     // A closed surface through all n points has 2n - 4 faces: reserve that at once rather than grow by halves.
     const size_t expected_faces = 2 * size_t(n);
-    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !open_.reserve((3 * expected_faces + 7) / 8)) {
+    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
         return context_.fail_out_of_memory();
     }
 
@@ -243,12 +187,12 @@ dbrg_status RegionGrower::drain_queue() {
         ++stats.candidates_evaluated;
         double smoothness;
         FaceCheck check;
-        const Verdict verdict = examine(c, smoothness, check);
-        if (verdict == Verdict::pinch && !c.postponed) {
+        const CandidateVerdict verdict = examine(c, smoothness, check);
+        if (verdict == CandidateVerdict::pinch && !c.postponed) {
             DBRG_PROPAGATE(postpone(c));
             continue;
         }
-        if (verdict != Verdict::valid && verdict != Verdict::pinch) {
+        if (verdict != CandidateVerdict::valid && verdict != CandidateVerdict::pinch) {
             DBRG_PROPAGATE(reject(c, verdict));
             continue;
         }
@@ -263,7 +207,7 @@ dbrg_status RegionGrower::drain_queue() {
                 DBRG_PROPAGATE(postpone(c));
             } else {
                 ++stats.rejected_boundary;
-                open_[c.halfedge / 8] |= uint8_t(1u << c.halfedge % 8);
+                causes_.mark_open(c.halfedge);
             }
             continue;
         }
@@ -303,15 +247,15 @@ bool RegionGrower::enqueue(const Candidate& c) {
     return queue_.push(c);
 }
 
-dbrg_status RegionGrower::reject(const Candidate& c, Verdict verdict) {
+dbrg_status RegionGrower::reject(const Candidate& c, CandidateVerdict verdict) {
     dbrg_stats& stats = context_.stats;
     switch (verdict) {
-    case Verdict::edge_nonmanifold: ++stats.rejected_edge_nonmanifold; break;
-    case Verdict::orientation: ++stats.rejected_orientation; break;
-    case Verdict::bowtie: ++stats.rejected_bowtie; break;
-    case Verdict::dihedral: ++stats.rejected_dihedral; break;
-    case Verdict::valid:
-    case Verdict::pinch: break;
+    case CandidateVerdict::edge_nonmanifold: ++stats.rejected_edge_nonmanifold; break;
+    case CandidateVerdict::orientation: ++stats.rejected_orientation; break;
+    case CandidateVerdict::bowtie: ++stats.rejected_bowtie; break;
+    case CandidateVerdict::dihedral: ++stats.rejected_dihedral; break;
+    case CandidateVerdict::valid:
+    case CandidateVerdict::pinch: break;
     }
     // The edge moves on to its next-best candidate (§3.2.2).
     const CandidateRank rejected = rank(c);
@@ -369,15 +313,15 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
 // half-edge u->v: no edge with a third face, compatible orientation, no neck that can never heal, and
 // dihedral angles with every neighbour in S below theta_sliver. Also computes the local smooth degree
 // (§3.1.3) over the neighbours the triangle would have.
-RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothness, FaceCheck& check) const {
+RegionGrower::CandidateVerdict RegionGrower::examine(const Candidate& c, double& smoothness, FaceCheck& check) const {
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
     const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
     check = surface_.check_face(v, u, c.apex);
     smoothness = dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(c.halfedge)));
     switch (check.verdict) {
-    case FaceCheck::edge_nonmanifold: return Verdict::edge_nonmanifold;
-    case FaceCheck::orientation: return Verdict::orientation;
-    case FaceCheck::bowtie: return Verdict::bowtie;
+    case FaceCheck::edge_nonmanifold: return CandidateVerdict::edge_nonmanifold;
+    case FaceCheck::orientation: return CandidateVerdict::orientation;
+    case FaceCheck::bowtie: return CandidateVerdict::bowtie;
     case FaceCheck::valid: break;
     }
     double cos_sum = 0;
@@ -391,9 +335,9 @@ RegionGrower::Verdict RegionGrower::examine(const Candidate& c, double& smoothne
         ++neighbours;
     }
     smoothness = cos_sum / neighbours;
-    if (too_sharp) return Verdict::dihedral;
+    if (too_sharp) return CandidateVerdict::dihedral;
     // Touching S at a vertex alone pinches it: needed where two fronts meet, but only once nothing better is left.
-    return check.pinches > 0 ? Verdict::pinch : Verdict::valid;
+    return check.pinches > 0 ? CandidateVerdict::pinch : CandidateVerdict::valid;
 }
 
 // §4: a candidate much larger than the triangles of S spans an opening of an open surface.
@@ -406,19 +350,16 @@ bool RegionGrower::passes_boundary_test(const Candidate& c) const {
     return c.radius <= factor * mean;
 }
 
-// Mean circumradius of the faces around both ends of the edge.
+// Mean circumradius of the faces around both ends of the edge (of a pinched end, its first fan's).
 double RegionGrower::local_mean_radius(uint32_t halfedge) const {
     double sum = 0;
     uint32_t count = 0;
     const uint32_t ends[2] = {surface_.origin(halfedge), surface_.target(halfedge)};
     for (uint32_t end : ends) {
-        const uint32_t start = surface_.vertex_halfedge(end);
-        uint32_t h = start;
-        do {
+        surface_.walk_fan(surface_.vertex_halfedge(end), [&](uint32_t h) {
             sum += face_radius(delaunay_, surface_, Surface::face_of(h));
             ++count;
-            h = surface_.rotate(h);
-        } while (h != NO_HALFEDGE && h != start);
+        });
     }
     return sum / count;
 }
@@ -449,10 +390,7 @@ dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t 
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
     const double r = circumradius(pa, pb, pc);
     radius_sum_ += r;
-    cause_halfedges_ = 3 * (f + 1);
-    if (!open_.resize((size_t(cause_halfedges_) + 7) / 8, 0)) {
-        return context_.fail_out_of_memory();
-    }
+    if (!causes_.cover_faces(f + 1)) return context_.fail_out_of_memory();
     DBRG_PROPAGATE(report_step());
     for (uint32_t i = 0; i < 3; ++i) {
         if (surface_.is_boundary(3 * f + i)) DBRG_PROPAGATE(propose(3 * f + i, nullptr));
@@ -469,7 +407,7 @@ dbrg_status RegionGrower::regrow_holes() {
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
     for (uint32_t h = 0; h < halfedges; ++h) {
-        if (surface_.is_boundary(h) && boundary_cause(h) == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
+        if (surface_.is_boundary(h) && causes_.of(h) == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
     }
     DBRG_PROPAGATE(grow_component());
     release_queues();

@@ -11,17 +11,12 @@
 #include "core/context.h"
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
+#include "grow/boundary_causes.h"
 #include "grow/candidate_queue.h"
 #include "grow/edge_flips.h"
 #include "surface/surface.h"
 
 namespace dbrg {
-
-// Why a half-edge of S is still on the boundary when growing ends.
-enum BoundaryCause : uint8_t {
-    BOUNDARY_UNRESOLVED = 0,  // every candidate was invalid (§3.2.1): a hole, for hole filling (§5)
-    BOUNDARY_OPEN = 1,        // the open-surface test (§4) refused its candidate: a real border
-};
 
 class RegionGrower {
 public:
@@ -33,11 +28,12 @@ public:
     dbrg_status grow();
 
     // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
-    // changed around it since it was last examined. Adds context.stats.hole_triangles_delaunay.
+    // changed around it since it was last examined. The first step of hole filling (§5): Delaunay
+    // triangles before ears. Adds context.stats.hole_triangles_delaunay.
     dbrg_status regrow_holes();
 
     // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
-    // those around the faces added since: hole filling calls it once the holes are closed.
+    // those around the faces added since: the last step of hole filling, once the holes are closed.
     dbrg_status flip_deferred() { return flipper_.flip_deferred(); }
     const EdgeFlipper& edge_flips() const { return flipper_; }
 
@@ -48,19 +44,19 @@ public:
         flipper_.observe_steps(observer, user);
     }
 
-    // Why a boundary half-edge is on the boundary; faces added after growing count as unresolved.
-    BoundaryCause boundary_cause(uint32_t halfedge) const {
-        return halfedge < cause_halfedges_ && (open_[halfedge / 8] >> halfedge % 8 & 1) ? BOUNDARY_OPEN : BOUNDARY_UNRESOLVED;
-    }
+    // Why each boundary half-edge is on the boundary, for hole filling; faces added by anything but this
+    // grower count as unresolved.
+    const BoundaryCauses& boundary_causes() const { return causes_; }
 
 private:
-    enum class Verdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral };
+    // The examinations' verdict on a candidate; FaceCheck::Verdict is the topological part of it.
+    enum class CandidateVerdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral };
 
     dbrg_status grow_component();
     dbrg_status drain_queue();
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
-    Verdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
+    CandidateVerdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
     bool passes_boundary_test(const Candidate& candidate) const;
     double local_mean_radius(uint32_t halfedge) const;
     CandidateRank rank(const Candidate& candidate) const;
@@ -70,7 +66,7 @@ private:
     dbrg_status postpone(Candidate candidate);
     bool enqueue(const Candidate& candidate);
     void release_queues();
-    dbrg_status reject(const Candidate& candidate, Verdict verdict);
+    dbrg_status reject(const Candidate& candidate, CandidateVerdict verdict);
     dbrg_status report_step() const;
     dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed);
     dbrg_status resolve_pinches(Array<uint32_t>& removed);
@@ -83,8 +79,7 @@ private:
 
     CandidateQueue queue_;
     Array<Candidate> postponed_;     // set aside once, retried when the queue runs dry
-    Array<uint8_t> open_;            // a bit per half-edge: its cause is BOUNDARY_OPEN
-    uint32_t cause_halfedges_ = 0;   // the half-edges of the faces growing added, which have a bit in open_
+    BoundaryCauses causes_;          // of the half-edges of the faces growing added
     uint32_t components_ = 0;        // seeds that grew into a surface of their own
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;

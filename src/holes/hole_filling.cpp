@@ -1,6 +1,6 @@
-// Hole filling: closes the holes that region growing left where every candidate was invalid, first with
-// Delaunay triangles (a second growing pass), then with ear triangles over each hole's own vertices,
-// enlarging a hole that cannot be filled validly and trying again (paper §5).
+// Hole filling: closes the holes that region growing left where every candidate was invalid with ear
+// triangles over each hole's own vertices, enlarging a hole that cannot be filled validly and trying again
+// (paper §5).
 //
 // Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
 // reconstruction from unorganized points", Computer-Aided Design 37 (2005), section 5.
@@ -15,39 +15,25 @@
 
 namespace dbrg {
 
-HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context)
+HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes,
+                       Context& context)
     : delaunay_(delaunay),
       surface_(surface),
-      grower_(grower),
+      causes_(causes),
       context_(context),
       restored_open_(context.memory) {}
 
-dbrg_status HoleFiller::fill() {
-    DBRG_PROPAGATE(fill_holes());
-    DBRG_PROPAGATE(remove_small_handles());
-    // Growing's flips passed over the edges with a corner on a hole's rim; the holes are closed now, and
-    // what is around the filled holes has changed.
-    DBRG_PROPAGATE(grower_.flip_deferred());
-    dbrg_stats& stats = context_.stats;
-    stats.handles_removed = handles_removed_;
-    stats.hole_triangles_added += handle_triangles_added_;
-    stats.hole_triangles_removed += handle_triangles_removed_;
-    return DBRG_OK;
+dbrg_status HoleFiller::find_holes(bool& found) {
+    context_.stats.holes_found = count_holes();
+    found = context_.stats.holes_found > 0;
+    return found ? context_.report(DBRG_STAGE_FILL_HOLES, 0.0) : DBRG_OK;
 }
 
-dbrg_status HoleFiller::fill_holes() {
+dbrg_status HoleFiller::fill_with_ears() {
     dbrg_stats& stats = context_.stats;
-    stats.holes_found = count_holes();
-    if (stats.holes_found == 0) return DBRG_OK;
-    DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, 0.0));
-
-    // Delaunay triangles first: S has changed since the holes' edges were last examined.
-    DBRG_PROPAGATE(grower_.regrow_holes());
-
-    // Then ears over each remaining hole. Holes are listed first, as filling adds half-edges, and by the
-    // corners of one boundary edge each: enlarging one hole can remove a face of another, and undoing that
-    // attempt puts the face back under a new id, so a listed half-edge id can go stale while the hole is
-    // still there.
+    // Holes are listed first, as filling adds half-edges, and by the corners of one boundary edge each:
+    // enlarging one hole can remove a face of another, and undoing that attempt puts the face back under
+    // a new id, so a listed half-edge id can go stale while the hole is still there.
     added_base_ = surface_.face_count();
     Array<uint32_t> starts(context_.memory);  // two corners per hole
     Array<uint8_t> listed(context_.memory);
@@ -55,11 +41,7 @@ dbrg_status HoleFiller::fill_holes() {
     if (!listed.resize(3 * size_t(added_base_), 0)) return context_.fail_out_of_memory();
     for (uint32_t h = 0; h < 3 * added_base_; ++h) {
         if (!surface_.is_boundary(h) || listed[h]) continue;
-        for (uint32_t g = h;;) {
-            listed[g] = 1;
-            g = surface_.fan_exit(g);
-            if (g == h) break;
-        }
+        surface_.walk_loop(h, [&](uint32_t g) { listed[g] = 1; });
         if (!starts.push_back(surface_.origin(h)) || !starts.push_back(surface_.target(h))) {
             return context_.fail_out_of_memory();
         }
@@ -91,7 +73,7 @@ dbrg_status HoleFiller::fill_holes() {
 }
 
 bool HoleFiller::is_open_boundary(uint32_t h) const {
-    if (h < 3 * added_base_ || added_base_ == 0) return grower_.boundary_cause(h) == BOUNDARY_OPEN;
+    if (h < 3 * added_base_ || added_base_ == 0) return causes_.of(h) == BOUNDARY_OPEN;
     const size_t k = h - 3 * size_t(added_base_);
     return k < restored_open_.size() && restored_open_[k] != 0;
 }
@@ -104,12 +86,10 @@ uint32_t HoleFiller::count_open_edges(const Array<uint32_t>& loop) const {
 
 bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
     loop.clear();
-    uint32_t h = start;
-    do {
-        if (loop.size() >= context_.params.max_hole_edges || !loop.push_back(h)) return false;
-        h = surface_.fan_exit(h);
-    } while (h != start);
-    return filling_cut_ || is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop));
+    const bool collected = surface_.walk_loop(start, [&](uint32_t h) {
+        return loop.size() < context_.params.max_hole_edges && loop.push_back(h);
+    });
+    return collected && (filling_cut_ || is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop)));
 }
 
 // Boundary loops that are holes (is_hole), of any length.
@@ -122,12 +102,11 @@ uint32_t HoleFiller::count_holes() const {
     for (uint32_t h = 0; h < halfedges; ++h) {
         if (!surface_.is_boundary(h) || seen[h]) continue;
         loop.clear();
-        uint32_t g = h;
-        do {
+        const bool collected = surface_.walk_loop(h, [&](uint32_t g) {
             seen[g] = 1;
-            if (!loop.push_back(g)) return 0;
-            g = surface_.fan_exit(g);
-        } while (g != h);
+            return loop.push_back(g);
+        });
+        if (!collected) return 0;
         holes += is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop)) ? 1 : 0;
     }
     return holes;
@@ -300,13 +279,7 @@ dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t te
 // The mean of the unit normals of the faces around v (paper §5).
 Vec3 HoleFiller::vertex_normal(uint32_t v) const {
     Vec3 sum{0, 0, 0};
-    surface_.for_each_fan(v, [&](uint32_t start) {
-        uint32_t h = start;
-        do {
-            sum = sum + face_normal(delaunay_, surface_, Surface::face_of(h));
-            h = surface_.rotate(h);
-        } while (h != NO_HALFEDGE && h != start);
-    });
+    surface_.walk_vertex(v, [&](uint32_t h) { sum = sum + face_normal(delaunay_, surface_, Surface::face_of(h)); });
     return normalized(sum);
 }
 

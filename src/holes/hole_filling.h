@@ -1,6 +1,7 @@
-// Hole filling: closes the holes that region growing left where every candidate was invalid, first with
-// Delaunay triangles (a second growing pass), then with ear triangles over each hole's own vertices,
-// enlarging a hole that cannot be filled validly and trying again (paper §5).
+// Hole filling: closes the holes that region growing left where every candidate was invalid with ear
+// triangles over each hole's own vertices, enlarging a hole that cannot be filled validly and trying again
+// (paper §5), once a second growing pass has closed what Delaunay triangles can (RegionGrower::regrow_holes);
+// then removes small handles.
 //
 // Based on: C.-C. Kuo and H.-T. Yau, "A Delaunay-based region-growing approach to surface
 // reconstruction from unorganized points", Computer-Aided Design 37 (2005), section 5.
@@ -13,7 +14,7 @@
 #include "core/pi.h"
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
-#include "grow/region_growing.h"
+#include "grow/boundary_causes.h"
 #include "holes/face_journal.h"
 #include "surface/surface.h"
 
@@ -23,13 +24,21 @@ struct SurfaceTopology;
 
 class HoleFiller {
 public:
-    HoleFiller(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
+    // `causes` says why growing left each boundary half-edge open; it is read at every step, so it may
+    // change in between (regrowing adds faces with causes of their own).
+    HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes, Context& context);
 
-    // Fills every hole of at most params.max_hole_edges edges that can be filled validly; leaves the
-    // open-surface boundaries (§4) alone, then removes small handles (remove_small_handles) and makes
-    // the edge flips growing deferred and those around the new faces (RegionGrower::flip_deferred).
-    // Fills the hole and handle fields of context.stats.
-    dbrg_status fill();
+    // Counts the holes (is_hole) into context.stats.holes_found; `found` tells whether there are any, and
+    // when there are, the stage's progress starts.
+    dbrg_status find_holes(bool& found);
+
+    // Fills every hole of at most params.max_hole_edges edges that can be filled validly with ears,
+    // leaving the open-surface boundaries (§4) alone. Fills the other hole fields of context.stats.
+    dbrg_status fill_with_ears();
+
+    // Topological noise removal: cuts closed components along short non-separating cycles and fills both
+    // sides (small_handles.cpp). Fills the handle fields of context.stats.
+    dbrg_status remove_small_handles();
 
 private:
     // How often a hole may be enlarged by removing its boundary triangles before it is left open.
@@ -43,10 +52,6 @@ private:
     // and a closed surface is worth a sharp fold there. Folding back completely is still refused.
     static constexpr double LAST_RESORT_FOLD_ANGLE = 175.0 * PI / 180.0;
 
-    dbrg_status fill_holes();
-    // Topological noise removal (small_handles.cpp): cuts closed components along short non-separating
-    // cycles and fills both sides.
-    dbrg_status remove_small_handles();
     dbrg_status cut_handle(const uint32_t* cycle, size_t length, SurfaceTopology& before, bool& removed);
     double length_between(uint32_t a, uint32_t b) const;
 
@@ -61,8 +66,8 @@ private:
     // was refused as too large (§4), or every candidate was invalid (§3.2.1); a loop is one thing or the
     // other, so its edges vote. At a real border nearly every edge sees only large triangles beyond it.
     // Where a closed surface comes closer to itself than the sample spacing (a deep crease, a neck), a
-    // hole's edges see triangles across the gap, and some are large enough for §4: a minority, so one
-    // such edge no longer makes the whole loop a border.
+    // hole's edges see triangles across the gap, and some are large enough for §4: a minority, which
+    // does not make the loop a border.
     bool is_hole(uint32_t length, uint32_t open_edges) const {
         return 2 * open_edges <= length || length <= open_loop_limit();
     }
@@ -88,7 +93,7 @@ private:
 
     const Tetrahedralization& delaunay_;
     Surface& surface_;
-    RegionGrower& grower_;
+    const BoundaryCauses& causes_;
     Context& context_;
     double cos_fold_limit_ = 1;  // ears folding at this cosine or below are refused
     // Faces restored after a failed attempt get new ids; their open-surface edges stay marked here.

@@ -134,17 +134,14 @@ dbrg_status HoleFiller::remove_small_handles() {
             queue.push_back(root);
             for (size_t q = 0; q < queue.size(); ++q) {
                 const uint32_t u = queue[q];
-                const uint32_t start = surface_.vertex_halfedge(u);
-                uint32_t h = start;
-                do {
+                surface_.walk_fan(surface_.vertex_halfedge(u), [&](uint32_t h) {
                     const uint32_t x = surface_.target(h);
                     if (tree_parent[x] == NO_VERTEX) {
                         tree_parent[x] = u;
                         kind[h] = kind[surface_.twin(h)] = TREE_EDGE;
                         queue.push_back(x);
                     }
-                    h = surface_.rotate(h);
-                } while (h != start && h != NO_HALFEDGE);
+                });
             }
         }
 
@@ -252,9 +249,7 @@ dbrg_status HoleFiller::remove_small_handles() {
             double best_measure = HUGE_VAL;
             for (size_t q = 0; q < ball.size(); ++q) {
                 const uint32_t u = ball[q];
-                const uint32_t start = surface_.vertex_halfedge(u);
-                uint32_t h = start;
-                do {
+                const bool walked = surface_.walk_fan(surface_.vertex_halfedge(u), [&](uint32_t h) {
                     const uint32_t x = surface_.target(h);
                     if (stamp[x] != seeds) {
                         if (depth[u] < BALL_RADIUS) {
@@ -264,7 +259,7 @@ dbrg_status HoleFiller::remove_small_handles() {
                             for (uint32_t w = 0; w < words; ++w) {
                                 cls[size_t(x) * words + w] = cls[size_t(u) * words + w] ^ edge_class_word(h, w);
                             }
-                            if (!ball.push_back(x)) return context_.fail_out_of_memory();
+                            if (!ball.push_back(x)) return false;
                         }
                     } else if (parent[x] != u && parent[u] != x && u < x) {
                         uint64_t any = 0;
@@ -296,8 +291,9 @@ dbrg_status HoleFiller::remove_small_handles() {
                             }
                         }
                     }
-                    h = surface_.rotate(h);
-                } while (h != start && h != NO_HALFEDGE);
+                    return true;
+                });
+                if (!walked) return context_.fail_out_of_memory();
             }
             if (best_u == NO_VERTEX) continue;
             // Record the cycle: u up to the ancestor, then down to x.
@@ -324,13 +320,10 @@ dbrg_status HoleFiller::remove_small_handles() {
             uint32_t edge_count = 0;
             for (uint32_t i = candidate.first; i < cycles.size(); ++i) {
                 const uint32_t v = cycles[i];
-                const uint32_t start = surface_.vertex_halfedge(v);
-                uint32_t h = start;
-                do {
+                surface_.walk_fan(surface_.vertex_halfedge(v), [&](uint32_t h) {
                     edge_sum += length_between(v, surface_.target(h));
                     ++edge_count;
-                    h = surface_.rotate(h);
-                } while (h != start && h != NO_HALFEDGE);
+                });
             }
             candidate.measure = best_measure / (edge_sum / edge_count);
             if (candidate.measure > MAX_CYCLE_LENGTH) {
@@ -390,7 +383,12 @@ dbrg_status HoleFiller::remove_small_handles() {
         handles_removed_ += removed_this_round;
         if (removed_this_round == 0) break;
     }
-    return memory.failed() ? context_.fail_out_of_memory() : DBRG_OK;
+    if (memory.failed()) return context_.fail_out_of_memory();
+    dbrg_stats& stats = context_.stats;
+    stats.handles_removed = handles_removed_;
+    stats.hole_triangles_added += handle_triangles_added_;
+    stats.hole_triangles_removed += handle_triangles_removed_;
+    return DBRG_OK;
 }
 
 double HoleFiller::length_between(uint32_t a, uint32_t b) const {
@@ -412,15 +410,9 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
     Array<uint32_t> doomed(memory), starts(memory);
     const uint32_t pinched_before = surface_.pinched_vertex_count();
     for (size_t i = 0; i < length; ++i) {
-        bool ok = true;
-        surface_.for_each_fan(cycle[i], [&](uint32_t start) {
-            uint32_t h = start;
-            do {
-                ok = ok && doomed.push_back(Surface::face_of(h));
-                h = surface_.rotate(h);
-            } while (h != NO_HALFEDGE && h != start);
-        });
-        if (!ok) return context_.fail_out_of_memory();
+        if (!surface_.walk_vertex(cycle[i], [&](uint32_t h) { return doomed.push_back(Surface::face_of(h)); })) {
+            return context_.fail_out_of_memory();
+        }
     }
     std::sort(doomed.begin(), doomed.end());
     uint32_t* last = std::unique(doomed.begin(), doomed.end());
@@ -431,12 +423,11 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
         }
         DBRG_PROPAGATE(remove_and_record(f, journal));
     }
-    // A cut that leaves a vertex with two sheets is not a clean cut along the cycle: put it back. (Cutting
-    // the pinches off too, and undoing that when the fill failed, corrupted the surface: found by fuzzing.)
+    // A cut that leaves a vertex with two sheets is not a clean cut along the cycle: put it back.
     if (surface_.pinched_vertex_count() > pinched_before) return undo(journal, 0);
 
-    // Fill every loop the removal opened, without enlargement: that changed nothing on the data when a
-    // hang found by fuzzing (a fault of the journal's undo, since fixed) had it dropped.
+    // Fill every loop the removal opened over its own vertices: on the data sets, enlarging fills no cut
+    // loop that ears alone leave open.
     filling_cut_ = true;
     bool all_filled = true;
     dbrg_status status = DBRG_OK;

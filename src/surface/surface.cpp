@@ -26,26 +26,20 @@ bool Surface::reset(uint32_t vertex_count) {
 
 uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
     uint32_t found = NO_HALFEDGE;
-    for_each_fan(a, [&](uint32_t start) {
-        uint32_t h = start;
-        do {
-            if (target(h) == b) found = h;
-            h = rotate(h);
-        } while (found == NO_HALFEDGE && h != NO_HALFEDGE && h != start);
+    walk_vertex(a, [&](uint32_t h) {
+        if (target(h) == b) found = h;
+        return found == NO_HALFEDGE;
     });
     return found;
 }
 
 void Surface::find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const {
     to_y = to_z = NO_HALFEDGE;
-    for_each_fan(x, [&](uint32_t start) {
-        uint32_t h = start;
-        do {
-            const uint32_t w = target(h);
-            if (w == y) to_y = h;
-            if (w == z) to_z = h;
-            h = rotate(h);
-        } while ((to_y == NO_HALFEDGE || to_z == NO_HALFEDGE) && h != NO_HALFEDGE && h != start);
+    walk_vertex(x, [&](uint32_t h) {
+        const uint32_t w = target(h);
+        if (w == y) to_y = h;
+        if (w == z) to_z = h;
+        return to_y == NO_HALFEDGE || to_z == NO_HALFEDGE;
     });
 }
 
@@ -183,8 +177,7 @@ bool Surface::remove_pinches(Array<uint32_t>& removed) {
         const size_t first = removed.size();
         bool grown = true;
         for_each_fan(v, [&](uint32_t start) {
-            if (start == largest) return;
-            for (uint32_t h = start; h != NO_HALFEDGE; h = rotate(h)) grown = grown && removed.push_back(face_of(h));
+            if (start != largest) walk_fan(start, [&](uint32_t h) { grown = grown && removed.push_back(face_of(h)); });
         });
         if (!grown) return false;
         for (size_t i = first; i < removed.size(); ++i) {
@@ -360,12 +353,13 @@ bool Surface::validate(char* message, size_t capacity) const {
                 well_formed = false;
                 return;
             }
-            uint32_t h = start;
-            do {
+            bool open = false;
+            walk_fan(start, [&](uint32_t h) {
                 ++reached;
-                h = rotate(h);
-            } while (h != NO_HALFEDGE && h != start && reached <= faces_at_vertex[v]);
-            if (h == NO_HALFEDGE ? !is_boundary(start) : fans > 1) well_formed = false;
+                open = rotate(h) == NO_HALFEDGE;
+                return reached <= faces_at_vertex[v];  // a corrupt fan may circle without coming back
+            });
+            if (open ? !is_boundary(start) : fans > 1) well_formed = false;
         });
         pinched += fans > 1 ? 1 : 0;
         if (!well_formed || reached != faces_at_vertex[v] || (fans > 1) != is_pinched(v)) {

@@ -7,6 +7,8 @@
 
 #include <stdint.h>
 
+#include <type_traits>
+
 #include "core/array.h"
 
 namespace dbrg {
@@ -82,7 +84,7 @@ public:
     // The number of faces in the open fan that starts at outgoing boundary half-edge `start`.
     uint32_t fan_size(uint32_t start) const {
         uint32_t size = 0;
-        for (uint32_t h = start; h != NO_HALFEDGE; h = rotate(h)) ++size;
+        walk_fan(start, [&](uint32_t) { ++size; });
         return size;
     }
 
@@ -92,6 +94,22 @@ public:
     // Calls visit(h) for the outgoing half-edge that starts each fan of v (none when v is unused).
     template <class Visit>
     void for_each_fan(uint32_t v, Visit&& visit) const;
+
+    // The one walk around a vertex: calls visit(h) for each outgoing half-edge of origin(start) in the fan
+    // of `start`, turning with rotate(), until the fan ends or comes back to `start` (so from a fan's
+    // start it visits the whole fan, one face per h). visit may return void, or bool: false stops the
+    // walk. Returns false when a visit stopped it.
+    template <class Visit>
+    bool walk_fan(uint32_t start, Visit&& visit) const;
+    // walk_fan over every fan of v in turn (nothing when v is unused); returns false when a visit stopped it.
+    template <class Visit>
+    bool walk_vertex(uint32_t v, Visit&& visit) const;
+
+    // The one walk along a boundary loop: calls visit(h) for each boundary half-edge of the loop through
+    // boundary half-edge `start`, in order (fan_exit), until the loop comes back to `start`. visit may
+    // return void, or bool: false stops the walk. Returns false when a visit stopped it.
+    template <class Visit>
+    bool walk_loop(uint32_t start, Visit&& visit) const;
 
     // The half-edge from a to b, or NO_HALFEDGE. O(degree of a).
     uint32_t find_halfedge(uint32_t a, uint32_t b) const;
@@ -154,6 +172,48 @@ private:
     uint32_t used_vertices_ = 0;
     uint32_t removed_faces_ = 0;
 };
+
+namespace surface_detail {
+
+// visit(h), or what it returns when it returns bool: whether a walk goes on.
+template <class Visit>
+inline bool keep_walking(Visit& visit, uint32_t h) {
+    if constexpr (std::is_void_v<decltype(visit(h))>) {
+        visit(h);
+        return true;
+    } else {
+        return visit(h);
+    }
+}
+
+} // namespace surface_detail
+
+template <class Visit>
+bool Surface::walk_fan(uint32_t start, Visit&& visit) const {
+    uint32_t h = start;
+    do {
+        if (!surface_detail::keep_walking(visit, h)) return false;
+        h = rotate(h);
+    } while (h != NO_HALFEDGE && h != start);
+    return true;
+}
+
+template <class Visit>
+bool Surface::walk_loop(uint32_t start, Visit&& visit) const {
+    uint32_t h = start;
+    do {
+        if (!surface_detail::keep_walking(visit, h)) return false;
+        h = fan_exit(h);
+    } while (h != start);
+    return true;
+}
+
+template <class Visit>
+bool Surface::walk_vertex(uint32_t v, Visit&& visit) const {
+    bool walking = true;
+    for_each_fan(v, [&](uint32_t start) { walking = walking && walk_fan(start, visit); });
+    return walking;
+}
 
 template <class Visit>
 void Surface::for_each_fan(uint32_t v, Visit&& visit) const {

@@ -1,0 +1,19 @@
+// Canonical order: the finite tetrahedra of a tetrahedralization numbered and written so that the output
+// depends on the coordinates only, never on the slots construction left them in.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+#include "delaunay/tetrahedralization.h"
+
+namespace dbrg {
+
+// Writes the finite tetrahedra of `delaunay` in the order of their canonical corners (canonical_corners),
+// each with its corners in that order: 4 corners per tetrahedron into `tets` as input_index[vertex], and
+// into `adjacency` the number of the tetrahedron across from each corner, DBRG_NO_NEIGHBOR on the hull.
+dbrg_status write_canonical_tetrahedra(const Tetrahedralization& delaunay, const uint32_t* input_index, Context& context,
+                                       Array<uint32_t>& tets, Array<uint32_t>& adjacency);
+
+} // namespace dbrg
