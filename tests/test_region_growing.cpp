@@ -11,7 +11,6 @@
 #include "core/params.h"
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
-#include "grow/edge_ring.h"
 #include "grow/region_growing.h"
 #include "grow/triangle_geometry.h"
 #include "pipeline.h"
@@ -89,50 +88,6 @@ TEST_CASE("diametral balls and tetrahedron circumradii, which rank the two ways 
     const double p[3] = {1, 1, 1}, q[3] = {1, -1, -1}, r[3] = {-1, 1, -1}, s[3] = {-1, -1, 1};
     CHECK(tet_circumradius(p, q, r, s) == doctest::Approx(std::sqrt(3.0)));
     CHECK(tet_circumradius(a, b, c, d) == HUGE_VAL);
-}
-
-TEST_CASE("the walk around a Delaunay edge gives each tetrahedron of its ring once, with a triangle it shares") {
-    Setup setup(samples::sample(samples::Shape::hemisphere, 300));  // an open shape: hull edges too
-    const Tetrahedralization& delaunay = setup.delaunay;
-    Array<uint32_t> star(setup.context.memory);
-    uint32_t edges = 0, hull_edges = 0;
-    bool rings_whole = true, apexes_shared = true;
-    for (uint32_t t = 0; t < delaunay.tet_slots(); ++t) {
-        if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
-        for (uint32_t i = 0; i < 4; ++i) {
-            for (uint32_t j = i + 1; j < 4; ++j) {
-                const uint32_t u = delaunay.tet_vertex(t, i), v = delaunay.tet_vertex(t, j);
-                std::vector<uint32_t> ring, apexes, expected;
-                walk_edge_ring(delaunay, t, u, v, [&](uint32_t apex, uint32_t tet) {
-                    ring.push_back(tet);
-                    apexes.push_back(apex);
-                });
-                REQUIRE(delaunay.tets_around_vertex(u, star));
-                for (uint32_t s : star) {
-                    if (delaunay.tet_local_index(s, v) < 4) expected.push_back(s);
-                }
-                std::sort(ring.begin(), ring.end());
-                std::sort(expected.begin(), expected.end());
-                rings_whole = rings_whole && ring == expected;
-                // Each triangle (u, v, apex) of the ring is a face of two of its tetrahedra.
-                for (uint32_t apex : apexes) {
-                    uint32_t holders = 0;
-                    for (uint32_t s : expected) {
-                        for (uint32_t k = 0; k < 4; ++k) holders += delaunay.tet_vertex(s, k) == apex ? 1 : 0;
-                    }
-                    apexes_shared = apexes_shared && holders == 2;
-                }
-                std::sort(apexes.begin(), apexes.end());
-                apexes_shared = apexes_shared && std::adjacent_find(apexes.begin(), apexes.end()) == apexes.end();
-                hull_edges += apexes.back() == INFINITE_VERTEX ? 1 : 0;
-                ++edges;
-            }
-        }
-    }
-    CHECK(rings_whole);
-    CHECK(apexes_shared);
-    CHECK(edges > 1000);
-    CHECK(hull_edges > 0);
 }
 
 TEST_CASE("growing starts from the highest point's smallest Delaunay triangle, facing up") {

@@ -1,5 +1,5 @@
 // Tetrahedralization: the compact tetrahedron store of a 3D Delaunay tetrahedralization and the queries
-// region growing needs (triangles around an edge, tetrahedra around a vertex).
+// region growing needs (tetrahedra around a vertex; triangles around an edge are in edge_ring.h).
 #pragma once
 
 #include <stdint.h>
@@ -83,13 +83,6 @@ public:
     // Some tetrahedron (finite or infinite) that contains vertex v.
     uint32_t vertex_tet(uint32_t v) const { return vertex_tet_[v]; }
 
-    // Calls visit(apex, tet) once for each Delaunay triangle (u, v, apex) around the edge (u, v), in
-    // cyclic order around the edge, starting from `start`, a tetrahedron that contains u and v. `tet`
-    // is a tetrahedron that has the triangle as a face. apex may be INFINITE_VERTEX (a hull edge);
-    // skip those if only finite triangles are wanted. Returning false from visit stops the walk.
-    template <class Visit>
-    void for_each_triangle_around_edge(uint32_t start, uint32_t u, uint32_t v, Visit&& visit) const;
-
     // Appends to `tets` every tetrahedron (finite or infinite) that contains vertex v. `tets` is
     // cleared first. Returns false on allocation failure.
     bool tets_around_vertex(uint32_t v, Array<uint32_t>& tets) const;
@@ -118,30 +111,5 @@ private:
     friend class DelaunayBuilder;
     friend class TetgenImporter;
 };
-
-template <class Visit>
-void Tetrahedralization::for_each_triangle_around_edge(uint32_t start, uint32_t u, uint32_t v, Visit&& visit) const {
-    // Each tetrahedron around the edge (u, v) has two more vertices; step across the face that holds u,
-    // v and the first of them (the face opposite the second) to the next tetrahedron around the edge.
-    uint32_t t = start;
-    // The vertex shared with the previous tetrahedron. At the start there is none: u stands in, as it is
-    // never one of `others`.
-    uint32_t apex = u;
-    do {
-        uint32_t others[2];
-        uint32_t n = 0;
-        for (uint32_t lv = 0; lv < 4; ++lv) {
-            const uint32_t w = tet_vertex(t, lv);
-            if (w != u && w != v) others[n++] = w;
-        }
-        // Continue away from the tetrahedron we came from: the face shared with it contains `apex`.
-        const uint32_t next_apex = (others[0] == apex) ? others[1] : others[0];
-        if (!visit(next_apex, t)) return;
-        const uint32_t across = (next_apex == others[0]) ? others[1] : others[0];
-        const uint32_t next = tet_adjacent(t, tet_local_index(t, across));
-        apex = next_apex;
-        t = next;
-    } while (t != start);
-}
 
 } // namespace dbrg

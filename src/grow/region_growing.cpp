@@ -11,7 +11,7 @@
 
 #include "core/intrinsics.h"
 #include "core/status.h"
-#include "grow/edge_ring.h"
+#include "delaunay/edge_ring.h"
 #include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
 
