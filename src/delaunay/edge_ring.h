@@ -44,9 +44,10 @@ template <class Emit>
 void walk_edge_ring(const Tetrahedralization& delaunay, uint32_t start, uint32_t u, uint32_t v, Emit&& emit) {
     using namespace edge_ring_detail;
     // Forward: tetrahedron tf, whose apex is the vertex other than the one it shares with the previous
-    // tetrahedron (the first's: others[0], unless that is the infinite vertex, which equals NO_TET).
+    // tetrahedron. The first has no previous one: its apex is others[0] unless that is the infinite vertex,
+    // so the walk starts as if it came from there.
     RingTet f = read_ring_tet(delaunay, start, u, v);
-    uint32_t tf = start, previous_apex = NO_TET;
+    uint32_t tf = start, previous_apex = INFINITE_VERTEX;
     const uint32_t first = f.others[0] == previous_apex ? 1 : 0;
     // Backward: tetrahedron tb, entered through the face that holds `entered`, its apex in the forward order.
     uint32_t tb = f.adjacent[f.local[first]], entered = f.others[1 - first];
