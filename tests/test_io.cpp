@@ -586,6 +586,21 @@ TEST_CASE("hostile PLY headers") {
     check_rejected("ply\nformat ascii 1.0\nbogus line\n", MeshFormat::ply_binary, "header line 3: unknown header keyword 'bogus'");
 }
 
+TEST_CASE("PLY headers: a size limit, and repeated property names found among thousands") {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement junk 0\n";
+    std::string many = head;
+    for (int i = 0; i < 100000; ++i) many += "property float p" + std::to_string(i) + "\n";
+    check_rejected(many + "end_header\n", MeshFormat::ply_ascii, "the header is longer than 1048576 bytes");
+    std::string distinct = head;
+    for (int i = 0; i < 30000; ++i) distinct += "property float p" + std::to_string(i) + "\n";
+    REQUIRE(distinct.size() < (1 << 20));
+    CHECK(read_ok(distinct + "end_header\n", MeshFormat::ply_ascii).vertex_count() == 0);
+    check_rejected(distinct + "property float p12345\nend_header\n", MeshFormat::ply_ascii,
+                   "header line 30008: element 'junk' has two properties named 'p12345'");
+    // Names are compared within their element only.
+    CHECK(read_ok(head + "property float x\nend_header\n", MeshFormat::ply_ascii).vertex_count() == 0);
+}
+
 TEST_CASE("a lying PLY header fails fast without allocating for its counts") {
     const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
     const auto start = std::chrono::steady_clock::now();
@@ -775,6 +790,7 @@ TEST_CASE("text that turns to binary data fails at the first line of it, read fr
 TEST_CASE("a line without end fails at the line limit") {
     check_rejected("1 2 3\n" + std::string(LineReader::DEFAULT_MAX_LINE_BYTES + 1, '7'), MeshFormat::xyz,
                    "XYZ line 2: a line longer than 16777216 bytes");
+    check_rejected("ply\n" + std::string((1 << 20) + 1, 'c'), MeshFormat::ply_binary, "PLY header line 2: a line longer than 1048576 bytes");
 }
 
 TEST_CASE("endless zero bytes from a pipe fail at once, with little read") {

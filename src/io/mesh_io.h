@@ -3,8 +3,9 @@
 // Errors come back as an IoStatus value whose message names the problem and where it is (a line number
 // for text formats, a byte offset for binary ones). Hostile input never crashes, never hangs and never
 // makes the reader allocate more than a small multiple of the input's size, whatever its header claims.
-// Text formats refuse a zero byte (binary data, not text) and lines longer than 16 MiB. Coordinates are
-// returned exactly as stored, NaN and infinity included: judging them is the caller's job.
+// Text formats refuse a zero byte (binary data, not text) and lines longer than 16 MiB; a PLY header may
+// take at most 1 MiB. Coordinates are returned exactly as stored, NaN and infinity included: judging them
+// is the caller's job.
 #pragma once
 
 #include <cstddef>

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "io/formats.h"
@@ -79,6 +80,10 @@ struct Element {
 
 enum class Encoding : uint8_t { ascii, binary_little, binary_big };
 
+// Real headers take a few kilobytes; a bound keeps a hostile one from costing time and memory, and 1 MiB
+// still holds some 40,000 property lines.
+const size_t MAX_HEADER_BYTES = 1 << 20;
+
 struct Header {
     Encoding encoding = Encoding::ascii;
     std::vector<Element> elements;
@@ -99,7 +104,8 @@ ElementKind element_kind(std::string_view name) {
 }
 
 // Decides what to do with a property from its element and name; rejects the forms the reader can't use.
-IoStatus assign_role(const Element& element, Property& property, size_t line) {
+// `names` holds the names of the element's earlier properties.
+IoStatus assign_role(const Element& element, const std::unordered_set<std::string>& names, Property& property, size_t line) {
     const std::string& name = property.name;
     if (element.kind == ElementKind::vertex && (name == "x" || name == "y" || name == "z")) {
         if (property.is_list) return header_error(line, "vertex property '" + name + "' is a list");
@@ -111,16 +117,14 @@ IoStatus assign_role(const Element& element, Property& property, size_t line) {
         if (!is_integer(property.type)) return header_error(line, "the vertex indices of '" + element.name + "' are not integers");
         property.role = Role::corners;
     }
-    for (const Property& other : element.properties) {
-        if (other.name == name) return header_error(line, "element '" + element.name + "' has two properties named " + quote_token(name));
-    }
+    if (names.count(name) != 0) return header_error(line, "element '" + element.name + "' has two properties named " + quote_token(name));
     if (property.is_list && !is_integer(property.count_type)) {
         return header_error(line, "the list count type of property " + quote_token(name) + " is not an integer type");
     }
     return IoStatus::success();
 }
 
-IoStatus parse_property(TokenSplitter& tokens, Element& element, size_t line) {
+IoStatus parse_property(TokenSplitter& tokens, Element& element, std::unordered_set<std::string>& names, size_t line) {
     Property property;
     std::string_view word;
     if (!tokens.next(word)) return header_error(line, "'property' without a type");
@@ -134,8 +138,9 @@ IoStatus parse_property(TokenSplitter& tokens, Element& element, size_t line) {
     std::string_view name;
     if (!tokens.next(name)) return header_error(line, "a property without a name");
     property.name = std::string(name);
-    IoStatus status = assign_role(element, property, line);
+    IoStatus status = assign_role(element, names, property, line);
     if (!status) return status;
+    names.insert(property.name);
     element.properties.push_back(std::move(property));
     return IoStatus::success();
 }
@@ -165,15 +170,20 @@ IoStatus parse_element(TokenSplitter& tokens, Header& header, size_t line) {
 }
 
 IoStatus parse_header(ByteSource& source, Header& header) {
-    LineReader lines(source);
+    const uint64_t start = source.offset();
+    LineReader lines(source, MAX_HEADER_BYTES);
     std::string_view line, word;
     if (!lines.next(line) || strip_blanks(line) != "ply") {
         return IoStatus::failure("PLY header line 1: the file does not begin with the line 'ply'");
     }
     bool have_format = false;
+    std::unordered_set<std::string> property_names;  // of the latest element: names must differ
     for (;;) {
         if (!lines.next(line)) return header_error(lines.line_number(), lines.stop_reason("the header ends without 'end_header'"));
         const size_t number = lines.line_number();
+        if (source.offset() - start > MAX_HEADER_BYTES) {
+            return header_error(number, "the header is longer than " + std::to_string(MAX_HEADER_BYTES) + " bytes, the most this reader accepts");
+        }
         TokenSplitter tokens(line);
         if (!tokens.next(word)) continue;
         if (word == "comment" || word == "obj_info") continue;
@@ -192,9 +202,10 @@ IoStatus parse_header(ByteSource& source, Header& header) {
             have_format = true;
         } else if (word == "element") {
             status = parse_element(tokens, header, number);
+            property_names.clear();
         } else if (word == "property") {
             if (header.elements.empty()) return header_error(number, "'property' before any 'element'");
-            status = parse_property(tokens, header.elements.back(), number);
+            status = parse_property(tokens, header.elements.back(), property_names, number);
         } else {
             return header_error(number, "unknown header keyword " + quote_token(word));
         }
