@@ -234,8 +234,7 @@ IoStatus parse_header(ByteSource& source, Header& header) {
 // Reads values from the binary body, in either byte order. Each read checks the bytes are there.
 class BinarySource {
 public:
-    BinarySource(ByteSource& source, bool big_endian)
-        : source_(source), big_endian_(big_endian), value_offset_(source.offset()) {}
+    BinarySource(ByteSource& source, bool big_endian) : source_(source), big_endian_(big_endian) {}
 
     bool read_number(PlyType type, double& value) {
         if (!take(type)) return false;
@@ -248,11 +247,16 @@ public:
         return true;
     }
     bool skip(PlyType type) { return take(type); }
+    // where() stays at the list's count, or moves to the first item when they run out.
     bool skip_list_items(PlyType type, uint64_t count) {
-        value_offset_ = source_.offset();
+        const uint64_t start = source_.offset();
         const uint64_t wanted = count * type_size(type);  // a list count has at most 32 bits: no overflow
-        if (source_.skip(wanted)) return true;
-        return fail_truncated(wanted, source_.offset() - value_offset_);
+        if (source_.skip(wanted)) {
+            taken_ += wanted;
+            return true;
+        }
+        taken_ = source_.offset() - start;
+        return fail_truncated(wanted, taken_);
     }
     // Whether `count` items of at least `min_bytes` each can still follow (always, when the input's size
     // is unknown: the items then run out as they are read).
@@ -265,16 +269,20 @@ public:
         return left ? *left / type_size(item_type) : std::numeric_limits<uint64_t>::max();
     }
     bool size_known() const { return source_.size_known(); }
-    std::string where() const { return "PLY byte offset " + std::to_string(value_offset_); }
+    // The offset of the value read last (or of the one that ran out).
+    std::string where() const { return "PLY byte offset " + std::to_string(source_.offset() - taken_); }
     const std::string& error() const { return error_; }
 
 private:
     bool take(PlyType type) {
         const size_t size = type_size(type);
-        value_offset_ = source_.offset();
-        if (!source_.ensure(size)) return fail_truncated(size, source_.window().size());
+        if (!source_.ensure(size)) {
+            taken_ = 0;
+            return fail_truncated(size, source_.window().size());
+        }
         value_ = reinterpret_cast<const unsigned char*>(source_.window().data());
         source_.consume(size);
+        taken_ = size;
         return true;
     }
     bool fail_truncated(uint64_t wanted, uint64_t left) {
@@ -312,8 +320,8 @@ private:
 
     ByteSource& source_;
     bool big_endian_;
-    uint64_t value_offset_;                  // in the input, of the value read last
-    const unsigned char* value_ = nullptr;   // its bytes, valid until the next read
+    const unsigned char* value_ = nullptr;  // the bytes of the value read last, valid until the next read
+    uint64_t taken_ = 0;                    // bytes consumed since that value began
     std::string error_;
 };
 

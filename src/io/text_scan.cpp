@@ -20,10 +20,9 @@ const char* find_byte(std::string_view text, size_t from, size_t to, char byte) 
 
 bool LineReader::next(std::string_view& line) {
     if (failed()) return false;
-    // The line grows over fills until its break turns up. Only its first max_line_bytes_ bytes are
-    // searched for a zero byte, so a buffer read at once and one read in chunks fail alike.
+    // The line grows over fills until its break turns up. Only a zero byte among its first
+    // max_line_bytes_ bytes counts, so a buffer read at once and one read in chunks fail alike.
     size_t searched = 0;  // bytes of the line known to hold no line break
-    size_t checked = 0;   // bytes of the line known to hold no zero byte
     size_t seen = 0;      // bytes of the line in the window
     const char* newline = nullptr;
     std::string_view window = source_.window();
@@ -31,10 +30,7 @@ bool LineReader::next(std::string_view& line) {
         newline = find_byte(window, searched, window.size(), '\n');
         seen = newline ? static_cast<size_t>(newline - window.data()) : window.size();
         const size_t to_check = std::min(seen, max_line_bytes_);
-        if (find_byte(window, checked, to_check, '\0')) {
-            return refuse("binary data (a zero byte) where text was expected");
-        }
-        checked = to_check;
+        if (holds_zero(window, to_check)) return refuse("binary data (a zero byte) where text was expected");
         if (seen > max_line_bytes_) {
             return refuse("a line longer than " + std::to_string(max_line_bytes_) + " bytes, the most this reader accepts");
         }
@@ -50,6 +46,21 @@ bool LineReader::next(std::string_view& line) {
     source_.consume(newline ? seen + 1 : seen);
     ++line_number_;
     return true;
+}
+
+bool LineReader::holds_zero(std::string_view window, size_t length) {
+    const uint64_t start = source_.offset();
+    const uint64_t end = start + length;
+    if (end > clean_until_ && zero_at_ == NO_ZERO) {
+        // One search runs ahead of the line to serve the lines after it (a call per line would cost 5%
+        // of reading an XYZ file), but not far: the text may end where binary data begins (a PLY header).
+        const size_t from = static_cast<size_t>(std::max(clean_until_, start) - start);
+        const size_t to = std::min(window.size(), length + ZERO_SEARCH_AHEAD);
+        const char* zero = find_byte(window, from, to, '\0');
+        zero_at_ = zero ? start + static_cast<uint64_t>(zero - window.data()) : NO_ZERO;
+        clean_until_ = zero ? zero_at_ : start + to;
+    }
+    return zero_at_ < end;
 }
 
 bool LineReader::refuse(std::string why) {

@@ -35,11 +35,18 @@ public:
     std::string stop_reason(const std::string& at_end) const { return failed() ? error_ : at_end; }
 
 private:
+    static constexpr uint64_t NO_ZERO = UINT64_MAX;
+    static constexpr size_t ZERO_SEARCH_AHEAD = 64 << 10;
+
+    // Whether the first `length` bytes of the line at the start of `window` hold a zero byte.
+    bool holds_zero(std::string_view window, size_t length);
     bool refuse(std::string why);
 
     ByteSource& source_;
     size_t max_line_bytes_;
     size_t line_number_ = 0;
+    uint64_t clean_until_ = 0;    // searched from the current line up to this offset: no zero byte
+    uint64_t zero_at_ = NO_ZERO;  // the zero byte that ended the search, if one did
     std::string error_;
 };
 
