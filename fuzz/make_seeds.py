@@ -195,28 +195,43 @@ end_header
 6 0 1 2 3 -1 4
 """
 
+# Text that turns into binary data (an ELF file's first bytes): refused at its first line holding a zero byte.
+BINARY_TAIL = b"\x7fELF\x02\x01\x01" + bytes(9) + b"\xff\xfe\nmore\n"
+
+# A PLY header whose element repeats a property name after many others (once a quadratic search).
+PLY_REPEATED_PROPERTY = (b"ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\n"
+                         b"element junk 0\n" + b"".join(b"property uchar p%d\n" % i for i in range(300)) +
+                         b"property uchar p150\nend_header\n")
+
 READERS = {
     "fuzz_read_ply": {"ascii": PLY_ASCII, "little_endian": ply_binary("<"), "big_endian": ply_binary(">"),
                       "strips": PLY_STRIPS, "truncated": ply_binary("<")[:-7],
-                      "lying_count": PLY_ASCII.replace(b"element vertex 4", b"element vertex 4000000000")},
+                      "lying_count": PLY_ASCII.replace(b"element vertex 4", b"element vertex 4000000000"),
+                      "zero_bytes": bytes(1024), "header_then_zero_bytes": b"ply\nformat ascii 1.0\n" + bytes(256),
+                      "ascii_turns_binary": PLY_ASCII[:PLY_ASCII.index(b"1 0 0 0")] + BINARY_TAIL,
+                      "repeated_property": PLY_REPEATED_PROPERTY},
     "fuzz_read_obj": {"tetrahedron": b"# comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1/1 4/1 3/1\nf 2//1 3//1 4//1\n",
                       "negative_indices": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0 1.0\nvt 0 0\nvn 0 0 1\nf -4 -3 -1 -2\ng part\nusemtl m\n",
                       "bad_index": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n",
-                      "points_only": b"v 1e300 -0 5e-324\nv nan inf -inf\nv 0.1 0.2 0.3\n"},
+                      "points_only": b"v 1e300 -0 5e-324\nv nan inf -inf\nv 0.1 0.2 0.3\n",
+                      "turns_binary": b"# comment\nv 0 0 0\nv 1 0 0\n" + BINARY_TAIL},
     "fuzz_read_off": {"tetrahedron": b"OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
                       "quad_and_comments": b"OFF # header\n# a square\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
                       "colour": b"COFF\n3 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n",
-                      "lying_counts": b"OFF\n99999999 99999999 0\n0 0 0\n"},
+                      "lying_counts": b"OFF\n99999999 99999999 0\n0 0 0\n",
+                      "zero_bytes": bytes(512), "turns_binary": b"OFF\n3 1 0\n0 0 0\n" + BINARY_TAIL},
     "fuzz_read_xyz": {"points": b"0 0 0\n1 0 0\n0 1 0\n0 0 1\n",
                       "pts_with_count": b"3\n0,0,0\n1,0,0,255,255,255\n0 1 0 # comment\n// another\n",
                       "special_values": b"nan inf -inf\n1e308 -1e-320 -0\n",
-                      "bad_line": b"0 0 0\n1 2\n"},
+                      "bad_line": b"0 0 0\n1 2\n",
+                      "zero_bytes": bytes(512), "turns_binary": b"0 0 0\n1 0 0\n" + BINARY_TAIL},
     "fuzz_read_stl": {"ascii": b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
                                b"facet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n",
                       "binary": bytes(80) + struct.pack("<I", 2) + b"".join(
                           struct.pack("<12fH", 0, 0, 1, *a, *b, *c, 0)
                           for a, b, c in [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((1, 0, 0), (1, 1, 0), (0, 1, 0))]),
-                      "lying_count": bytes(80) + struct.pack("<I", 1000000)},
+                      "lying_count": bytes(80) + struct.pack("<I", 1000000),
+                      "ascii_turns_binary": b"solid t\nfacet normal 0 0 1\nouter loop\n" + BINARY_TAIL},
 }
 
 # fuzz_roundtrip: triangle count (4 bytes, modulo 301), three 4-byte corners per triangle, then points.

@@ -187,6 +187,27 @@ class NeverAbort(Folder):
         self.assertGreater(code, 0)  # a signal would be negative
 
 
+class EndlessInput(Folder):
+    def test_an_endless_stream_of_zero_bytes_fails_at_once(self):
+        for name in ("zeros.ply", "zeros.xyz"):
+            fifo = self.path(name)
+            os.mkfifo(fifo)
+
+            def feed():
+                try:
+                    with open(fifo, "wb") as f:
+                        while True:
+                            f.write(bytes(1 << 16))
+                except (BrokenPipeError, OSError):
+                    pass
+            writer = threading.Thread(target=feed, daemon=True)
+            writer.start()
+            code, _, err = run("stats", fifo, timeout=30)
+            self.assertEqual(code, 1, name)
+            self.assertIn(name, err)
+            self.assertTrue("zero byte" in err or "'ply'" in err, err)
+
+
 class Messages(Folder):
     def test_tight_boundary_factor_warns(self):
         code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "2000",

@@ -2,19 +2,32 @@
 // hostile input (lying headers, truncation, garbage), which must fail with a message and never crash.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
+#include "io/formats.h"
 #include "io/mesh_io.h"
+#include "io/text_scan.h"
 
 using namespace dbrg::io;
 
@@ -23,8 +36,45 @@ namespace {
 const MeshFormat ALL_FORMATS[] = {MeshFormat::ply_binary, MeshFormat::ply_ascii, MeshFormat::obj,
                                   MeshFormat::off,        MeshFormat::xyz,       MeshFormat::stl};
 
-IoStatus read_text(std::string_view text, MeshFormat format, MeshData& out) {
-    return read_mesh_buffer(text.data(), text.size(), format, out);
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+bool same_mesh(const MeshData& a, const MeshData& b) {
+    return same_bits(a.positions, b.positions) && a.triangles == b.triangles && a.has_faces == b.has_faces;
+}
+
+// Reads `bytes` through a source that hands them out 1 to 7 at a time into a 16-byte first buffer, as
+// a file (`size_known`) or a pipe is read, so that every line, token and value straddles refills.
+IoStatus read_in_pieces(std::string_view bytes, MeshFormat format, bool size_known, MeshData& out) {
+    size_t at = 0, turn = 0;
+    ByteSource source(
+        [&](char* destination, size_t capacity) {
+            const size_t piece = std::min({capacity, bytes.size() - at, 1 + turn++ % 7});
+            std::copy_n(bytes.data() + at, piece, destination);
+            at += piece;
+            return piece;
+        },
+        size_known ? std::optional<uint64_t>(bytes.size()) : std::nullopt, 16);
+    return read_mesh_source(source, format, out);
+}
+
+// Reads `bytes` at once with read_mesh_buffer, and checks that reading them in pieces gives the same:
+// the same mesh and message when their size is known, the same mesh or a failure when it is not (then
+// a lying count shows only when the data runs out, and STL cannot tell ascii by the size).
+IoStatus read_text(std::string_view bytes, MeshFormat format, MeshData& out) {
+    const IoStatus status = read_mesh_buffer(bytes.data(), bytes.size(), format, out);
+    MeshData piecewise;
+    const IoStatus piecewise_status = read_in_pieces(bytes, format, true, piecewise);
+    CHECK(piecewise_status.ok == status.ok);
+    CHECK(piecewise_status.message == status.message);
+    CHECK(same_mesh(piecewise, out));
+    if (format != MeshFormat::stl) {
+        const IoStatus unsized_status = read_in_pieces(bytes, format, false, piecewise);
+        CHECK(unsized_status.ok == status.ok);
+        CHECK(same_mesh(piecewise, out));
+    }
+    return status;
 }
 
 // Reads text that must be accepted; fails the test with the reader's message otherwise.
@@ -100,10 +150,6 @@ std::vector<std::array<double, 9>> triangle_corners(const MeshData& mesh) {
     return corners;
 }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
-
 std::string temp_path(const std::string& name) {
     const char* dir = std::getenv("TMPDIR");
     return std::string(dir ? dir : "/tmp") + "/dbrg_test_io_" + std::to_string(std::random_device()()) + "_" + name;
@@ -123,6 +169,55 @@ const bool SANITIZED = false;
 #endif
 #else
 const bool SANITIZED = false;
+#endif
+
+
+#if defined(__unix__) || defined(__APPLE__)
+const bool HAVE_FIFOS = true;
+
+// What read_mesh made of a FIFO named like `name` that a thread fed with `start` and then `filler`
+// bytes without end (stopping only at 256 MiB, so that a reader which takes everything ends the test
+// and fails it), and how many bytes the thread got into the pipe.
+struct FifoRead {
+    IoStatus status;
+    MeshData mesh;
+    uint64_t bytes_written = 0;
+};
+
+FifoRead read_endless_fifo(const std::string& name, const std::string& start, char filler) {
+    const std::string path = temp_path(name);
+    REQUIRE(mkfifo(path.c_str(), 0600) == 0);
+    // A write into a pipe whose reader has gone must fail with EPIPE rather than kill the test.
+    const auto previous_handler = std::signal(SIGPIPE, SIG_IGN);
+    std::atomic<uint64_t> written{0};
+    std::thread writer([&] {
+        // Opening without blocking (it fails until the reader has opened) cannot hang the test.
+        int fd = -1;
+        const auto begun = std::chrono::steady_clock::now();
+        while ((fd = open(path.c_str(), O_WRONLY | O_NONBLOCK)) < 0 && seconds_since(begun) < 10) std::this_thread::yield();
+        if (fd < 0) return;
+        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+        const std::string fill(64 << 10, filler);
+        std::string_view pending = start;
+        while (written < (uint64_t(256) << 20)) {
+            if (pending.empty()) pending = fill;
+            const ssize_t count = write(fd, pending.data(), pending.size());
+            if (count <= 0) break;
+            written += static_cast<uint64_t>(count);
+            pending.remove_prefix(static_cast<size_t>(count));
+        }
+        close(fd);
+    });
+    FifoRead result;
+    result.status = read_mesh(path, result.mesh);
+    writer.join();
+    std::signal(SIGPIPE, previous_handler);
+    std::remove(path.c_str());
+    result.bytes_written = written;
+    return result;
+}
+#else
+const bool HAVE_FIFOS = false;
 #endif
 
 } // namespace
@@ -149,7 +244,7 @@ TEST_CASE("every format round-trips positions exactly") {
         std::string bytes;
         REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
         MeshData back;
-        const IoStatus status = read_mesh_buffer(bytes.data(), bytes.size(), format, back);
+        const IoStatus status = read_text(bytes, format, back);
         INFO(status.message);
         REQUIRE(status.ok);
         CHECK(same_bits(back.positions, mesh.positions));
@@ -491,6 +586,21 @@ TEST_CASE("hostile PLY headers") {
     check_rejected("ply\nformat ascii 1.0\nbogus line\n", MeshFormat::ply_binary, "header line 3: unknown header keyword 'bogus'");
 }
 
+TEST_CASE("PLY headers: a size limit, and repeated property names found among thousands") {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement junk 0\n";
+    std::string many = head;
+    for (int i = 0; i < 100000; ++i) many += "property float p" + std::to_string(i) + "\n";
+    check_rejected(many + "end_header\n", MeshFormat::ply_ascii, "the header is longer than 1048576 bytes");
+    std::string distinct = head;
+    for (int i = 0; i < 30000; ++i) distinct += "property float p" + std::to_string(i) + "\n";
+    REQUIRE(distinct.size() < (1 << 20));
+    CHECK(read_ok(distinct + "end_header\n", MeshFormat::ply_ascii).vertex_count() == 0);
+    check_rejected(distinct + "property float p12345\nend_header\n", MeshFormat::ply_ascii,
+                   "header line 30008: element 'junk' has two properties named 'p12345'");
+    // Names are compared within their element only.
+    CHECK(read_ok(head + "property float x\nend_header\n", MeshFormat::ply_ascii).vertex_count() == 0);
+}
+
 TEST_CASE("a lying PLY header fails fast without allocating for its counts") {
     const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
     const auto start = std::chrono::steady_clock::now();
@@ -644,6 +754,128 @@ TEST_CASE("hostile STL") {
     check_rejected("solid x\nfacet\nfacet\n", MeshFormat::stl, "'facet' inside a facet");
 }
 
+TEST_CASE("text that turns to binary data fails at the first line of it, read from a buffer or a file") {
+    const std::string garbage = std::string("\x7f" "ELF\x02\x01\x01", 7) + std::string(9, '\0') + "\xff\xfe\nmore\n";
+    const std::string ply_head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+    const struct {
+        MeshFormat format;
+        const char* extension;
+        std::string good_start;
+        const char* expected;
+    } cases[] = {
+        {MeshFormat::xyz, ".xyz", "1 2 3\n4 5 6\n", "XYZ line 3: binary data (a zero byte) where text was expected"},
+        {MeshFormat::obj, ".obj", "# made by hand\nv 0 0 0\nv 1 0 0\n", "OBJ line 4: binary data"},
+        {MeshFormat::off, ".off", "OFF\n3 1 0\n0 0 0\n", "OFF line 4: binary data"},
+        {MeshFormat::ply_ascii, ".ply", ply_head + "0 0 0\n", "PLY line 9: binary data"},
+        {MeshFormat::stl, ".stl", "solid x\nfacet normal 0 0 1\n", "STL line 3: binary data"},
+    };
+    for (const auto& c : cases) {
+        CAPTURE(c.extension);
+        const std::string bytes = c.good_start + garbage;
+        check_rejected(bytes, c.format, c.expected);
+        // A file says the same, after its path.
+        const std::string path = temp_path(std::string("garbage") + c.extension);
+        std::FILE* file = std::fopen(path.c_str(), "wb");
+        REQUIRE(file);
+        REQUIRE(std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size());
+        std::fclose(file);
+        MeshData from_buffer, from_file;
+        const IoStatus buffer_status = read_mesh_buffer(bytes.data(), bytes.size(), c.format, from_buffer);
+        const IoStatus file_status = read_mesh(path, from_file);
+        CHECK(file_status.message == path + ": " + buffer_status.message);
+        std::remove(path.c_str());
+    }
+}
+
+TEST_CASE("a line without end fails at the line limit") {
+    check_rejected("1 2 3\n" + std::string(LineReader::DEFAULT_MAX_LINE_BYTES + 1, '7'), MeshFormat::xyz,
+                   "XYZ line 2: a line longer than 16777216 bytes");
+    check_rejected("ply\n" + std::string((1 << 20) + 1, 'c'), MeshFormat::ply_binary, "PLY header line 2: a line longer than 1048576 bytes");
+}
+
+TEST_CASE("endless zero bytes from a pipe fail at once, with little read") {
+    if (!HAVE_FIFOS) return;
+    const struct {
+        const char* name;
+        const char* expected;
+    } cases[] = {
+        {"zeros.ply", "PLY header line 1: the file does not begin with the line 'ply'"},
+        {"zeros.xyz", "XYZ line 1: binary data"},
+        {"zeros.obj", "OBJ line 1: binary data"},
+        {"zeros.off", "OFF line 1: binary data"},
+    };
+    for (const auto& c : cases) {
+        CAPTURE(c.name);
+        const FifoRead read = read_endless_fifo(c.name, "", '\0');
+        CHECK_FALSE(read.status.ok);
+        CHECK(read.status.message.find(c.expected) != std::string::npos);
+        CHECK(read.bytes_written < (4 << 20));
+    }
+    // Good lines first: the first line of zeros is named.
+    const FifoRead points = read_endless_fifo("points.xyz", "1 2 3\n4 5 6\n", '\0');
+    CHECK(points.status.message.find("XYZ line 3: binary data") != std::string::npos);
+    CHECK(points.bytes_written < (4 << 20));
+    // Text without a line break stops at the line limit.
+    const FifoRead sevens = read_endless_fifo("sevens.xyz", "1 2 3\n", '7');
+    CHECK(sevens.status.message.find("XYZ line 2: a line longer than 16777216 bytes") != std::string::npos);
+    CHECK(sevens.bytes_written < (40 << 20));
+}
+
+TEST_CASE("binary formats from a pipe read what their header declares and no more") {
+    if (!HAVE_FIFOS) return;
+    const MeshData mesh = float_exact_mesh();
+    for (const auto& [format, name] : {std::pair{MeshFormat::stl, "mesh.stl"}, std::pair{MeshFormat::ply_binary, "mesh.ply"}}) {
+        CAPTURE(name);
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        const FifoRead read = read_endless_fifo(name, bytes, '\0');
+        INFO(read.status.message);
+        CHECK(read.status.ok);
+        CHECK(triangle_corners(read.mesh) == triangle_corners(mesh));
+        CHECK(read.bytes_written < (4 << 20));
+    }
+}
+
+TEST_CASE("/dev/zero is refused at once by the text formats and is an empty binary STL") {
+    if (!std::filesystem::exists("/dev/zero")) return;
+    const std::string directory = temp_path("devices");
+    std::filesystem::create_directory(directory);
+    for (const char* extension : {".ply", ".xyz", ".obj", ".off", ".stl"}) {
+        CAPTURE(extension);
+        const std::string path = directory + "/zero" + extension;
+        std::filesystem::create_symlink("/dev/zero", path);
+        MeshData mesh;
+        const IoStatus status = read_mesh(path, mesh);
+        if (std::string(extension) == ".stl") {
+            CHECK(status.ok);  // 80 header bytes and a count of 0 triangles
+            CHECK(mesh.triangle_count() == 0);
+        } else {
+            CHECK_FALSE(status.ok);
+            const bool named = status.message.find("binary data") != std::string::npos ||
+                               status.message.find("does not begin with the line 'ply'") != std::string::npos;
+            CHECK(named);
+        }
+    }
+    std::filesystem::remove_all(directory);
+}
+
+TEST_CASE("STL of unknown size (a pipe) tells ascii from binary by the triangle count's bytes") {
+    const std::string ascii = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                              "endsolid x\n";
+    REQUIRE(ascii.size() > 84);  // its triangle count field is text
+    std::string binary;
+    REQUIRE(write_mesh_buffer(float_exact_mesh(), MeshFormat::stl, binary).ok);
+    binary.replace(0, 5, "solid");
+    for (const std::string& bytes : {ascii, binary}) {
+        MeshData at_once, piecewise;
+        REQUIRE(read_mesh_buffer(bytes.data(), bytes.size(), MeshFormat::stl, at_once).ok);
+        const IoStatus status = read_in_pieces(bytes, MeshFormat::stl, false, piecewise);
+        INFO(status.message);
+        CHECK(status.ok);
+        CHECK(same_mesh(piecewise, at_once));
+    }
+}
+
 TEST_CASE("every prefix and many corruptions of valid files are handled without crashing") {
     MeshData mesh = float_exact_mesh();
     std::mt19937 random(12345);
@@ -653,7 +885,7 @@ TEST_CASE("every prefix and many corruptions of valid files are handled without 
         REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
         for (size_t length = 0; length <= bytes.size(); ++length) {
             MeshData out;
-            const IoStatus status = read_mesh_buffer(bytes.data(), length, format, out);
+            const IoStatus status = read_text(std::string_view(bytes.data(), length), format, out);
             if (!status.ok) CHECK_FALSE(status.message.empty());
             for (uint32_t index : out.triangles) CHECK(index < out.vertex_count());
         }
@@ -666,7 +898,7 @@ TEST_CASE("every prefix and many corruptions of valid files are handled without 
                 corrupted[at] = random() % 2 ? static_cast<char>(random()) : choices[random() % sizeof choices];
             }
             MeshData out;
-            const IoStatus status = read_mesh_buffer(corrupted.data(), corrupted.size(), format, out);
+            const IoStatus status = read_text(corrupted, format, out);
             if (!status.ok) CHECK_FALSE(status.message.empty());
             for (uint32_t index : out.triangles) CHECK(index < out.vertex_count());
         }
@@ -683,7 +915,7 @@ TEST_CASE("random bytes are rejected or read without crashing by every reader") 
         if (trial % 3 == 1) garbage = "OFF\n" + garbage;
         for (MeshFormat format : ALL_FORMATS) {
             MeshData out;
-            const IoStatus status = read_mesh_buffer(garbage.data(), garbage.size(), format, out);
+            const IoStatus status = read_text(garbage, format, out);
             if (!status.ok) CHECK_FALSE(status.message.empty());
             for (uint32_t index : out.triangles) CHECK(index < out.vertex_count());
         }

@@ -1,7 +1,10 @@
 // The per-format readers and writers behind mesh_io.h, and the small helpers they share.
 //
-// Readers work on bytes already in memory, fill an empty MeshData and return a status whose message says
-// where the problem is (line or byte offset). Writers are handed a mesh whose indices are in range.
+// Readers pull their bytes from a ByteSource as they parse, fill an empty MeshData and return a status
+// whose message says where the problem is (line or byte offset). They give the same results and messages
+// whether the source holds the whole input or delivers it in pieces, except that counts in a header can
+// only be checked against the input's size when that is known. Writers are handed a mesh whose indices
+// are in range.
 #pragma once
 
 #include <charconv>
@@ -10,15 +13,20 @@
 #include <string>
 #include <string_view>
 
+#include "io/byte_source.h"
 #include "io/mesh_io.h"
 
 namespace dbrg::io {
 
-IoStatus read_ply(std::string_view bytes, MeshData& out);
-IoStatus read_obj(std::string_view text, MeshData& out);
-IoStatus read_off(std::string_view text, MeshData& out);
-IoStatus read_xyz(std::string_view text, MeshData& out);
-IoStatus read_stl(std::string_view bytes, MeshData& out);
+// Reads `source` as `format`, as read_mesh_buffer does (exceptions become statuses; on failure `out` is
+// left empty).
+IoStatus read_mesh_source(ByteSource& source, MeshFormat format, MeshData& out);
+
+IoStatus read_ply(ByteSource& source, MeshData& out);
+IoStatus read_obj(ByteSource& source, MeshData& out);
+IoStatus read_off(ByteSource& source, MeshData& out);
+IoStatus read_xyz(ByteSource& source, MeshData& out);
+IoStatus read_stl(ByteSource& source, MeshData& out);
 
 void write_ply(const MeshData& mesh, bool binary, std::string& out);
 void write_obj(const MeshData& mesh, std::string& out);

@@ -1,4 +1,4 @@
-// The entry points of the I/O library: format choice, whole-file reading and writing, error boundary.
+// The entry points of the I/O library: format choice, reading and writing files and buffers, error boundary.
 #include "io/mesh_io.h"
 
 #include <cerrno>
@@ -78,18 +78,16 @@ const char* format_name(MeshFormat format) {
     return "unknown";
 }
 
-IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, MeshData& out) {
+IoStatus read_mesh_source(ByteSource& source, MeshFormat format, MeshData& out) {
     out = MeshData();
-    if (!data && size > 0) return IoStatus::failure("no data (NULL buffer with a non-zero size)");
-    const std::string_view bytes(static_cast<const char*>(data), data ? size : 0);
     IoStatus status = without_exceptions([&] {
         switch (format) {
         case MeshFormat::ply_binary:
-        case MeshFormat::ply_ascii: return read_ply(bytes, out);
-        case MeshFormat::obj: return read_obj(bytes, out);
-        case MeshFormat::off: return read_off(bytes, out);
-        case MeshFormat::xyz: return read_xyz(bytes, out);
-        case MeshFormat::stl: return read_stl(bytes, out);
+        case MeshFormat::ply_ascii: return read_ply(source, out);
+        case MeshFormat::obj: return read_obj(source, out);
+        case MeshFormat::off: return read_off(source, out);
+        case MeshFormat::xyz: return read_xyz(source, out);
+        case MeshFormat::stl: return read_stl(source, out);
         }
         return IoStatus::failure("unknown format");
     });
@@ -97,11 +95,17 @@ IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, Mesh
     return status;
 }
 
+IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, MeshData& out) {
+    out = MeshData();
+    if (!data && size > 0) return IoStatus::failure("no data (NULL buffer with a non-zero size)");
+    ByteSource source(std::string_view(static_cast<const char*>(data), data ? size : 0));
+    return read_mesh_source(source, format, out);
+}
+
 IoStatus read_mesh(const std::string& path, MeshData& out) {
     out = MeshData();
     const std::optional<MeshFormat> format = format_from_path(path);
     if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts or .stl)");
-    std::string bytes;
     IoStatus status = without_exceptions([&] {
         // Closed on every way out, a thrown bad_alloc included.
         const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
@@ -109,15 +113,27 @@ IoStatus read_mesh(const std::string& path, MeshData& out) {
         struct stat info;
         if (fstat(fileno(file.get()), &info) != 0) return IoStatus::failure(std::strerror(errno));
         if (S_ISDIR(info.st_mode)) return IoStatus::failure("a directory, not a file");
-        // Reserving a regular file's size up front saves the copies of a doubling string (a 50 MB scan
-        // spent more time in them than in parsing); a pipe is just read.
-        if (S_ISREG(info.st_mode)) bytes.reserve(static_cast<size_t>(info.st_size));
-        char chunk[1 << 16];
-        size_t got = 0;
-        while ((got = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) bytes.append(chunk, got);
-        return std::ferror(file.get()) ? IoStatus::failure(std::strerror(errno)) : IoStatus::success();
+        // The file is parsed as it is read, a chunk at a time: a pipe or device that never ends (or a
+        // huge file of garbage) fails on its first bad bytes instead of filling memory first. Only a
+        // regular file's size is known in advance.
+        std::optional<uint64_t> size;
+        if (S_ISREG(info.st_mode)) size = static_cast<uint64_t>(info.st_size);
+        int read_error = 0;
+        ByteSource source(
+            [&](char* destination, size_t capacity) {
+                const size_t got = std::fread(destination, 1, capacity, file.get());
+                if (got < capacity && std::ferror(file.get())) read_error = errno;
+                return got;
+            },
+            size);
+        const IoStatus read = read_mesh_source(source, *format, out);
+        // The reader took the failed read for the end of the file; the failure itself is the news.
+        if (read_error != 0) {
+            out = MeshData();
+            return IoStatus::failure(std::strerror(read_error));
+        }
+        return read;
     });
-    if (status) status = read_mesh_buffer(bytes.data(), bytes.size(), *format, out);
     if (!status) status.message = path + ": " + status.message;
     return status;
 }

@@ -3,7 +3,9 @@
 // Errors come back as an IoStatus value whose message names the problem and where it is (a line number
 // for text formats, a byte offset for binary ones). Hostile input never crashes, never hangs and never
 // makes the reader allocate more than a small multiple of the input's size, whatever its header claims.
-// Coordinates are returned exactly as stored, NaN and infinity included: judging them is the caller's job.
+// Text formats refuse a zero byte (binary data, not text) and lines longer than 16 MiB; a PLY header may
+// take at most 1 MiB. Coordinates are returned exactly as stored, NaN and infinity included: judging them
+// is the caller's job.
 #pragma once
 
 #include <cstddef>
@@ -50,8 +52,12 @@ std::optional<MeshFormat> format_from_path(std::string_view path);
 // The lower-case name of a format ("ply_binary", "obj", ...).
 const char* format_name(MeshFormat format);
 
-// Reads the file at `path`, choosing the reader by its extension. On failure `out` is left empty and the
-// message begins with the path.
+// Reads the file at `path`, choosing the reader by its extension. The file is parsed as it is read, so a
+// pipe or device works too and input that is not the format fails on its first bad bytes; binary formats
+// read no further than their header declares. An endless stream of valid data ends with "out of memory",
+// as any input too large for memory does. A regular file gives read_mesh_buffer's results and messages
+// for its bytes; a pipe's size is unknown, so a header's lying counts show only when the data runs out.
+// On failure `out` is left empty and the message begins with the path.
 IoStatus read_mesh(const std::string& path, MeshData& out);
 
 // Reads `size` bytes at `data` as `format`. On failure `out` is left empty. data may be NULL when size is 0.

@@ -15,8 +15,8 @@ IoStatus line_error(size_t line, const std::string& what) {
 
 } // namespace
 
-IoStatus read_obj(std::string_view text, MeshData& out) {
-    LineReader lines(text);
+IoStatus read_obj(ByteSource& source, MeshData& out) {
+    LineReader lines(source);
     std::string_view line, word;
     std::vector<uint32_t> corners;
     // OBJ lets a face name a vertex defined further down; those are checked once all vertices are known.
@@ -71,6 +71,7 @@ IoStatus read_obj(std::string_view text, MeshData& out) {
             append_fan(out.triangles, corners.data(), corners.size());
         }
     }
+    if (lines.failed()) return line_error(lines.line_number(), lines.error());
     if (largest_forward_index >= static_cast<int64_t>(out.vertex_count())) {
         return line_error(largest_forward_line, "vertex index " + std::to_string(largest_forward_index + 1) +
                                                     " is out of range (the file has " + std::to_string(out.vertex_count()) + " vertices)");

@@ -14,6 +14,11 @@ IoStatus line_error(size_t line, const std::string& what) {
     return IoStatus::failure("OFF line " + std::to_string(line) + ": " + what);
 }
 
+// The failure of a text that stopped where more was due: at its end, or at a line the reader refused.
+IoStatus ended(const LineReader& lines, const std::string& at_end) {
+    return line_error(lines.line_number(), lines.stop_reason(at_end));
+}
+
 // OFF, COFF, NOFF, CNOFF, STOFF, STCNOFF...: per-vertex colours, normals and texture
 // coordinates only add columns after x y z, which the reader ignores. 4OFF and nOFF change the dimension.
 bool is_three_dimensional_off_keyword(std::string_view word) {
@@ -45,11 +50,11 @@ bool read_count(TokenSplitter& tokens, int64_t& count) {
 
 } // namespace
 
-IoStatus read_off(std::string_view text, MeshData& out) {
-    LineReader lines(text);
+IoStatus read_off(ByteSource& source, MeshData& out) {
+    LineReader lines(source);
     TokenSplitter tokens{std::string_view()};
     std::string_view word;
-    if (!next_content_line(lines, tokens) || !tokens.next(word)) return line_error(lines.line_number(), "the file is empty");
+    if (!next_content_line(lines, tokens) || !tokens.next(word)) return ended(lines, "the file is empty");
     if (!is_three_dimensional_off_keyword(word)) {
         return line_error(lines.line_number(), "expected the keyword 'OFF', found " + quote_token(word));
     }
@@ -58,7 +63,7 @@ IoStatus read_off(std::string_view text, MeshData& out) {
     if (rest.next(word)) {
         if (word == "BINARY") return line_error(lines.line_number(), "binary OFF is not supported");
     } else if (!next_content_line(lines, tokens)) {
-        return line_error(lines.line_number(), "the file ends before the vertex and face counts");
+        return ended(lines, "the file ends before the vertex and face counts");
     }
     int64_t vertex_count = 0, face_count = 0;
     if (!read_count(tokens, vertex_count) || !read_count(tokens, face_count)) {
@@ -68,11 +73,13 @@ IoStatus read_off(std::string_view text, MeshData& out) {
         return line_error(lines.line_number(), "the header declares " + std::to_string(vertex_count) + " vertices; at most 4294967294 are supported");
     }
     out.has_faces = true;
-    // A vertex line takes at least six bytes ("0 0 0\n"): cap the reservation by what the text can hold.
-    out.positions.reserve(3 * std::min<size_t>(static_cast<size_t>(vertex_count), lines.remaining() / 6));
+    // A vertex line takes at least six bytes ("0 0 0\n"): cap the reservation by what the text can hold,
+    // and leave it to the vertices read when that is unknown.
+    const uint64_t room = source.bytes_left().value_or(0) / 6;
+    out.positions.reserve(3 * static_cast<size_t>(std::min<uint64_t>(static_cast<uint64_t>(vertex_count), room)));
     for (int64_t v = 0; v < vertex_count; ++v) {
         if (!next_content_line(lines, tokens)) {
-            return line_error(lines.line_number(), "the file ends after " + std::to_string(v) + " of " + std::to_string(vertex_count) + " vertices");
+            return ended(lines, "the file ends after " + std::to_string(v) + " of " + std::to_string(vertex_count) + " vertices");
         }
         for (size_t k = 0; k < 3; ++k) {
             double value = 0.0;
@@ -84,7 +91,7 @@ IoStatus read_off(std::string_view text, MeshData& out) {
     std::vector<uint32_t> corners;
     for (int64_t f = 0; f < face_count; ++f) {
         if (!next_content_line(lines, tokens)) {
-            return line_error(lines.line_number(), "the file ends after " + std::to_string(f) + " of " + std::to_string(face_count) + " faces");
+            return ended(lines, "the file ends after " + std::to_string(f) + " of " + std::to_string(face_count) + " faces");
         }
         int64_t corner_count = 0;
         if (!read_count(tokens, corner_count)) return line_error(lines.line_number(), "expected the number of corners of a face");

@@ -2,10 +2,12 @@
 //
 // Every element and property other than vertex x/y/z, face vertex_indices (or vertex_index) and
 // tristrips vertex_indices is read past and ignored. Counts in the header are checked against the bytes
-// that follow before anything is reserved, so a lying header fails at once instead of allocating.
+// that follow before anything is reserved, so a lying header fails at once instead of allocating; when
+// the input's size is unknown (a pipe), nothing is reserved for them and the data runs out as it is read.
 #include <cstring>
 #include <limits>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "io/formats.h"
@@ -78,10 +80,13 @@ struct Element {
 
 enum class Encoding : uint8_t { ascii, binary_little, binary_big };
 
+// Real headers take a few kilobytes; a bound keeps a hostile one from costing time and memory, and 1 MiB
+// still holds some 40,000 property lines.
+const size_t MAX_HEADER_BYTES = 1 << 20;
+
 struct Header {
     Encoding encoding = Encoding::ascii;
     std::vector<Element> elements;
-    size_t body_offset = 0;   // first byte after end_header's line
     size_t header_lines = 0;  // lines up to and including end_header
     uint32_t vertex_count = 0;
     bool has_vertex_element = false;
@@ -99,7 +104,8 @@ ElementKind element_kind(std::string_view name) {
 }
 
 // Decides what to do with a property from its element and name; rejects the forms the reader can't use.
-IoStatus assign_role(const Element& element, Property& property, size_t line) {
+// `names` holds the names of the element's earlier properties.
+IoStatus assign_role(const Element& element, const std::unordered_set<std::string>& names, Property& property, size_t line) {
     const std::string& name = property.name;
     if (element.kind == ElementKind::vertex && (name == "x" || name == "y" || name == "z")) {
         if (property.is_list) return header_error(line, "vertex property '" + name + "' is a list");
@@ -111,16 +117,14 @@ IoStatus assign_role(const Element& element, Property& property, size_t line) {
         if (!is_integer(property.type)) return header_error(line, "the vertex indices of '" + element.name + "' are not integers");
         property.role = Role::corners;
     }
-    for (const Property& other : element.properties) {
-        if (other.name == name) return header_error(line, "element '" + element.name + "' has two properties named " + quote_token(name));
-    }
+    if (names.count(name) != 0) return header_error(line, "element '" + element.name + "' has two properties named " + quote_token(name));
     if (property.is_list && !is_integer(property.count_type)) {
         return header_error(line, "the list count type of property " + quote_token(name) + " is not an integer type");
     }
     return IoStatus::success();
 }
 
-IoStatus parse_property(TokenSplitter& tokens, Element& element, size_t line) {
+IoStatus parse_property(TokenSplitter& tokens, Element& element, std::unordered_set<std::string>& names, size_t line) {
     Property property;
     std::string_view word;
     if (!tokens.next(word)) return header_error(line, "'property' without a type");
@@ -134,8 +138,9 @@ IoStatus parse_property(TokenSplitter& tokens, Element& element, size_t line) {
     std::string_view name;
     if (!tokens.next(name)) return header_error(line, "a property without a name");
     property.name = std::string(name);
-    IoStatus status = assign_role(element, property, line);
+    IoStatus status = assign_role(element, names, property, line);
     if (!status) return status;
+    names.insert(property.name);
     element.properties.push_back(std::move(property));
     return IoStatus::success();
 }
@@ -164,16 +169,21 @@ IoStatus parse_element(TokenSplitter& tokens, Header& header, size_t line) {
     return IoStatus::success();
 }
 
-IoStatus parse_header(std::string_view bytes, Header& header) {
-    LineReader lines(bytes);
+IoStatus parse_header(ByteSource& source, Header& header) {
+    const uint64_t start = source.offset();
+    LineReader lines(source, MAX_HEADER_BYTES);
     std::string_view line, word;
     if (!lines.next(line) || strip_blanks(line) != "ply") {
         return IoStatus::failure("PLY header line 1: the file does not begin with the line 'ply'");
     }
     bool have_format = false;
+    std::unordered_set<std::string> property_names;  // of the latest element: names must differ
     for (;;) {
-        if (!lines.next(line)) return header_error(lines.line_number(), "the header ends without 'end_header'");
+        if (!lines.next(line)) return header_error(lines.line_number(), lines.stop_reason("the header ends without 'end_header'"));
         const size_t number = lines.line_number();
+        if (source.offset() - start > MAX_HEADER_BYTES) {
+            return header_error(number, "the header is longer than " + std::to_string(MAX_HEADER_BYTES) + " bytes, the most this reader accepts");
+        }
         TokenSplitter tokens(line);
         if (!tokens.next(word)) continue;
         if (word == "comment" || word == "obj_info") continue;
@@ -192,9 +202,10 @@ IoStatus parse_header(std::string_view bytes, Header& header) {
             have_format = true;
         } else if (word == "element") {
             status = parse_element(tokens, header, number);
+            property_names.clear();
         } else if (word == "property") {
             if (header.elements.empty()) return header_error(number, "'property' before any 'element'");
-            status = parse_property(tokens, header.elements.back(), number);
+            status = parse_property(tokens, header.elements.back(), property_names, number);
         } else {
             return header_error(number, "unknown header keyword " + quote_token(word));
         }
@@ -202,7 +213,6 @@ IoStatus parse_header(std::string_view bytes, Header& header) {
     }
     if (!have_format) return header_error(lines.line_number(), "no 'format' line before end_header");
     header.header_lines = lines.line_number();
-    header.body_offset = bytes.size() - lines.remaining();
     for (const Element& element : header.elements) {
         auto has_role = [&](Role role) {
             for (const Property& property : element.properties) {
@@ -224,9 +234,7 @@ IoStatus parse_header(std::string_view bytes, Header& header) {
 // Reads values from the binary body, in either byte order. Each read checks the bytes are there.
 class BinarySource {
 public:
-    BinarySource(std::string_view body, size_t body_offset, bool big_endian)
-        : data_(reinterpret_cast<const unsigned char*>(body.data())), size_(body.size()),
-          body_offset_(body_offset), big_endian_(big_endian) {}
+    BinarySource(ByteSource& source, bool big_endian) : source_(source), big_endian_(big_endian) {}
 
     bool read_number(PlyType type, double& value) {
         if (!take(type)) return false;
@@ -239,36 +247,51 @@ public:
         return true;
     }
     bool skip(PlyType type) { return take(type); }
-    // `count` was checked against list_limit, so the items are there.
+    // where() stays at the list's count, or moves to the first item when they run out.
     bool skip_list_items(PlyType type, uint64_t count) {
-        position_ += static_cast<size_t>(count) * type_size(type);
-        return true;
+        const uint64_t start = source_.offset();
+        const uint64_t wanted = count * type_size(type);  // a list count has at most 32 bits: no overflow
+        if (source_.skip(wanted)) {
+            taken_ += wanted;
+            return true;
+        }
+        taken_ = source_.offset() - start;
+        return fail_truncated(wanted, taken_);
     }
-    // Whether `count` items of at least `min_bytes` each can still follow.
+    // Whether `count` items of at least `min_bytes` each can still follow (always, when the input's size
+    // is unknown: the items then run out as they are read).
     bool can_hold(uint64_t count, size_t, size_t min_bytes) const {
-        return min_bytes == 0 || count <= (size_ - position_) / min_bytes;
+        const std::optional<uint64_t> left = source_.bytes_left();
+        return min_bytes == 0 || !left || count <= *left / min_bytes;
     }
-    uint64_t list_limit(PlyType item_type) const { return (size_ - position_) / type_size(item_type); }
-    std::string where() const { return "PLY byte offset " + std::to_string(body_offset_ + value_start_); }
+    uint64_t list_limit(PlyType item_type) const {
+        const std::optional<uint64_t> left = source_.bytes_left();
+        return left ? *left / type_size(item_type) : std::numeric_limits<uint64_t>::max();
+    }
+    bool size_known() const { return source_.size_known(); }
+    // The offset of the value read last (or of the one that ran out).
+    std::string where() const { return "PLY byte offset " + std::to_string(source_.offset() - taken_); }
     const std::string& error() const { return error_; }
 
 private:
     bool take(PlyType type) {
         const size_t size = type_size(type);
-        value_start_ = position_;
-        if (size > size_ - position_) return fail_truncated(size);
-        position_ += size;
+        if (!source_.ensure(size)) {
+            taken_ = 0;
+            return fail_truncated(size, source_.window().size());
+        }
+        value_ = reinterpret_cast<const unsigned char*>(source_.window().data());
+        source_.consume(size);
+        taken_ = size;
         return true;
     }
-    bool fail_truncated(size_t wanted) {
-        error_ = "the file ends in the middle of the data (" + std::to_string(wanted) + " more bytes expected, " +
-                 std::to_string(size_ - position_) + " left)";
+    bool fail_truncated(uint64_t wanted, uint64_t left) {
+        error_ = "the file ends in the middle of the data (" + std::to_string(wanted) + " more bytes expected, " + std::to_string(left) + " left)";
         return false;
     }
     uint64_t load_bits(size_t size) const {
-        const unsigned char* bytes = data_ + value_start_;
         uint64_t bits = 0;
-        for (size_t i = 0; i < size; ++i) bits |= uint64_t(bytes[big_endian_ ? size - 1 - i : i]) << (8 * i);
+        for (size_t i = 0; i < size; ++i) bits |= uint64_t(value_[big_endian_ ? size - 1 - i : i]) << (8 * i);
         return bits;
     }
     double decode_number(PlyType type) const {
@@ -295,19 +318,17 @@ private:
         return 0.0;
     }
 
-    const unsigned char* data_;
-    size_t size_;
-    size_t body_offset_;
+    ByteSource& source_;
     bool big_endian_;
-    size_t position_ = 0;
-    size_t value_start_ = 0;
+    const unsigned char* value_ = nullptr;  // the bytes of the value read last, valid until the next read
+    uint64_t taken_ = 0;                    // bytes consumed since that value began
     std::string error_;
 };
 
 // Reads values from the ascii body: a stream of tokens, line breaks being mere separators.
 class AsciiSource {
 public:
-    AsciiSource(std::string_view body, size_t header_lines) : tokens_(body), header_lines_(header_lines) {}
+    AsciiSource(ByteSource& source, size_t header_lines) : tokens_(source), header_lines_(header_lines) {}
 
     bool read_number(PlyType, double& value) {
         std::string_view token;
@@ -331,18 +352,24 @@ public:
         }
         return true;
     }
-    // A token takes at least one byte and all but the last one a separator too.
+    // A token takes at least one byte and all but the last one a separator too. Any count fits an input
+    // of unknown size: the tokens then run out as they are read.
     bool can_hold(uint64_t count, size_t min_tokens, size_t) const {
-        return min_tokens == 0 || count <= (tokens_.remaining_bytes() / 2 + 1) / min_tokens;
+        const std::optional<uint64_t> left = tokens_.bytes_left();
+        return min_tokens == 0 || !left || count <= (*left / 2 + 1) / min_tokens;
     }
-    uint64_t list_limit(PlyType) const { return tokens_.remaining_bytes() / 2 + 1; }
+    uint64_t list_limit(PlyType) const {
+        const std::optional<uint64_t> left = tokens_.bytes_left();
+        return left ? *left / 2 + 1 : std::numeric_limits<uint64_t>::max();
+    }
+    bool size_known() const { return tokens_.bytes_left().has_value(); }
     std::string where() const { return "PLY line " + std::to_string(header_lines_ + tokens_.line_number()); }
     const std::string& error() const { return error_; }
 
 private:
     bool next(std::string_view& token) {
         if (tokens_.next(token)) return true;
-        return fail("the file ends in the middle of the data");
+        return fail(tokens_.error().empty() ? "the file ends in the middle of the data" : tokens_.error());
     }
     bool fail(std::string message) {
         error_ = std::move(message);
@@ -427,9 +454,11 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
                         " items, more than the rest of the file can hold");
         }
         const bool is_vertex = element.kind == ElementKind::vertex;
-        if (is_vertex) out.positions.reserve(3 * static_cast<size_t>(element.count));
-        // One triangle per face is the common case; can_hold has bounded the count by the file's size.
-        if (element.kind == ElementKind::face) out.triangles.reserve(out.triangles.size() + 3 * static_cast<size_t>(element.count));
+        // One triangle per face is the common case. can_hold has bounded the count by the input's size;
+        // when that is unknown, the arrays grow with what is read.
+        const size_t reserved = source.size_known() ? static_cast<size_t>(element.count) : 0;
+        if (is_vertex) out.positions.reserve(3 * reserved);
+        if (element.kind == ElementKind::face) out.triangles.reserve(out.triangles.size() + 3 * reserved);
         for (uint64_t item = 0; item < element.count; ++item) {
             double xyz[3] = {0.0, 0.0, 0.0};
             corners.begin(element.kind);
@@ -469,20 +498,19 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
 
 } // namespace
 
-IoStatus read_ply(std::string_view bytes, MeshData& out) {
+IoStatus read_ply(ByteSource& source, MeshData& out) {
     Header header;
-    IoStatus status = parse_header(bytes, header);
+    IoStatus status = parse_header(source, header);
     if (!status) return status;
     for (const Element& element : header.elements) {
         out.has_faces = out.has_faces || element.kind == ElementKind::face || element.kind == ElementKind::tristrips;
     }
-    const std::string_view body = bytes.substr(header.body_offset);
     if (header.encoding == Encoding::ascii) {
-        AsciiSource source(body, header.header_lines);
-        return read_body(header, source, out);
+        AsciiSource body(source, header.header_lines);
+        return read_body(header, body, out);
     }
-    BinarySource source(body, header.body_offset, header.encoding == Encoding::binary_big);
-    return read_body(header, source, out);
+    BinarySource body(source, header.encoding == Encoding::binary_big);
+    return read_body(header, body, out);
 }
 
 } // namespace dbrg::io

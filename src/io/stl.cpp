@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -63,33 +64,47 @@ float load_float32_le(const unsigned char* bytes) {
     return value;
 }
 
-IoStatus read_binary_stl(std::string_view bytes, MeshData& out) {
-    if (bytes.size() < STL_PREAMBLE_BYTES) {
-        return IoStatus::failure("STL byte offset 0: " + std::to_string(bytes.size()) + " bytes is too short for a binary STL (84 at least)");
+uint64_t declared_triangles(std::string_view preamble) {
+    const unsigned char* data = reinterpret_cast<const unsigned char*>(preamble.data());
+    return uint64_t(data[80]) | uint64_t(data[81]) << 8 | uint64_t(data[82]) << 16 | uint64_t(data[83]) << 24;
+}
+
+IoStatus read_binary_stl(ByteSource& source, MeshData& out) {
+    if (!source.ensure(STL_PREAMBLE_BYTES)) {
+        return IoStatus::failure("STL byte offset 0: " + std::to_string(source.window().size()) + " bytes is too short for a binary STL (84 at least)");
     }
-    const unsigned char* data = reinterpret_cast<const unsigned char*>(bytes.data());
-    const uint64_t count = uint64_t(data[80]) | uint64_t(data[81]) << 8 | uint64_t(data[82]) << 16 | uint64_t(data[83]) << 24;
-    if (count > (bytes.size() - STL_PREAMBLE_BYTES) / STL_TRIANGLE_BYTES) {
+    const uint64_t count = declared_triangles(source.window());
+    source.consume(STL_PREAMBLE_BYTES);
+    // Only a known size can expose a lying count at once; otherwise the triangles run out as they are read.
+    const std::optional<uint64_t> left = source.bytes_left();
+    if (left && count > *left / STL_TRIANGLE_BYTES) {
         return IoStatus::failure("STL byte offset 80: the header declares " + std::to_string(count) + " triangles, but the file holds only " +
-                                 std::to_string((bytes.size() - STL_PREAMBLE_BYTES) / STL_TRIANGLE_BYTES));
+                                 std::to_string(*left / STL_TRIANGLE_BYTES));
     }
     out.has_faces = true;
-    out.triangles.reserve(3 * count);
     VertexMerger merger(out);
-    merger.reserve(3 * count);
+    if (left) {
+        out.triangles.reserve(3 * count);
+        merger.reserve(3 * count);
+    }
     for (uint64_t t = 0; t < count; ++t) {
-        const unsigned char* corner = data + STL_PREAMBLE_BYTES + t * STL_TRIANGLE_BYTES + 12;
+        if (!source.ensure(STL_TRIANGLE_BYTES)) {
+            return IoStatus::failure("STL byte offset " + std::to_string(source.offset()) + ": the file ends after " + std::to_string(t) + " of " +
+                                     std::to_string(count) + " triangles");
+        }
+        const unsigned char* corner = reinterpret_cast<const unsigned char*>(source.window().data()) + 12;
         for (size_t k = 0; k < 3; ++k, corner += 12) {
             const double xyz[3] = {load_float32_le(corner), load_float32_le(corner + 4), load_float32_le(corner + 8)};
             if (!merger.add(xyz)) return IoStatus::failure("STL: more than 4294967294 distinct vertices");
         }
+        source.consume(STL_TRIANGLE_BYTES);
     }
     return IoStatus::success();
 }
 
-IoStatus read_ascii_stl(std::string_view text, MeshData& out) {
+IoStatus read_ascii_stl(ByteSource& source, MeshData& out) {
     auto fail = [](size_t line, const std::string& what) { return IoStatus::failure("STL line " + std::to_string(line) + ": " + what); };
-    LineReader lines(text);
+    LineReader lines(source);
     std::string_view line, word;
     VertexMerger merger(out);
     size_t corners_in_facet = 0;
@@ -115,17 +130,23 @@ IoStatus read_ascii_stl(std::string_view text, MeshData& out) {
             in_facet = false;
         }
     }
+    if (lines.failed()) return fail(lines.line_number(), lines.error());
     if (in_facet) return fail(lines.line_number(), "the file ends inside a facet");
     return IoStatus::success();
 }
 
-// Ascii STL starts with "solid", but so do many binary files' free-form headers: the binary size wins.
-bool looks_binary(std::string_view bytes) {
-    if (bytes.size() < STL_PREAMBLE_BYTES) return strip_blanks(bytes).substr(0, 5) != "solid";
-    const unsigned char* data = reinterpret_cast<const unsigned char*>(bytes.data());
-    const uint64_t count = uint64_t(data[80]) | uint64_t(data[81]) << 8 | uint64_t(data[82]) << 16 | uint64_t(data[83]) << 24;
-    if (STL_PREAMBLE_BYTES + count * STL_TRIANGLE_BYTES == bytes.size()) return true;
-    return strip_blanks(bytes.substr(0, STL_HEADER_BYTES)).substr(0, 5) != "solid";
+// Ascii STL starts with "solid", but so do many binary files' free-form headers. With the input's size
+// known, a binary file's exact size wins. Without it (a pipe), so does a triangle count holding a byte
+// that text never holds: a binary file's count has one below 16,777,216 triangles (its top byte is 0).
+bool looks_binary(std::string_view start, std::optional<uint64_t> size) {
+    if (start.size() < STL_PREAMBLE_BYTES) return strip_blanks(start).substr(0, 5) != "solid";
+    if (strip_blanks(start.substr(0, STL_HEADER_BYTES)).substr(0, 5) != "solid") return true;
+    if (size) return STL_PREAMBLE_BYTES + declared_triangles(start) * STL_TRIANGLE_BYTES == *size;
+    for (size_t i = STL_HEADER_BYTES; i < STL_PREAMBLE_BYTES; ++i) {
+        const unsigned char c = static_cast<unsigned char>(start[i]);
+        if (c < 0x20 && !(c >= '\t' && c <= '\r')) return true;
+    }
+    return false;
 }
 
 void append_float32_le(std::string& out, double value) {
@@ -137,8 +158,9 @@ void append_float32_le(std::string& out, double value) {
 
 } // namespace
 
-IoStatus read_stl(std::string_view bytes, MeshData& out) {
-    return looks_binary(bytes) ? read_binary_stl(bytes, out) : read_ascii_stl(bytes, out);
+IoStatus read_stl(ByteSource& source, MeshData& out) {
+    source.ensure(STL_PREAMBLE_BYTES);  // or all of a shorter input
+    return looks_binary(source.window(), source.bytes_left()) ? read_binary_stl(source, out) : read_ascii_stl(source, out);
 }
 
 void write_stl(const MeshData& mesh, std::string& out) {

@@ -1,26 +1,72 @@
 // Line and token scanning and locale-independent number parsing shared by the text-format readers.
 #include "io/text_scan.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstring>
+#include <utility>
 
 namespace dbrg::io {
 namespace {
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
+// The first `byte` of text[from, to), or nullptr; memchr without its undefined case of a null pointer.
+const char* find_byte(std::string_view text, size_t from, size_t to, char byte) {
+    return from < to ? static_cast<const char*>(std::memchr(text.data() + from, byte, to - from)) : nullptr;
+}
+
 } // namespace
 
 bool LineReader::next(std::string_view& line) {
-    if (rest_.empty()) return false;
-    const void* newline = std::memchr(rest_.data(), '\n', rest_.size());
-    const size_t length = newline ? static_cast<size_t>(static_cast<const char*>(newline) - rest_.data())
-                                  : rest_.size();
-    line = rest_.substr(0, length);
+    if (failed()) return false;
+    // The line grows over fills until its break turns up. Only a zero byte among its first
+    // max_line_bytes_ bytes counts, so a buffer read at once and one read in chunks fail alike.
+    size_t searched = 0;  // bytes of the line known to hold no line break
+    size_t seen = 0;      // bytes of the line in the window
+    const char* newline = nullptr;
+    std::string_view window = source_.window();
+    for (;;) {
+        newline = find_byte(window, searched, window.size(), '\n');
+        seen = newline ? static_cast<size_t>(newline - window.data()) : window.size();
+        const size_t to_check = std::min(seen, max_line_bytes_);
+        if (holds_zero(window, to_check)) return refuse("binary data (a zero byte) where text was expected");
+        if (seen > max_line_bytes_) {
+            return refuse("a line longer than " + std::to_string(max_line_bytes_) + " bytes, the most this reader accepts");
+        }
+        if (newline) break;
+        const bool filled = source_.fill();
+        window = source_.window();  // moved by any fill, even one that finds the end
+        if (!filled) break;
+        searched = seen;
+    }
+    if (window.empty()) return false;
+    line = window.substr(0, seen);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    rest_.remove_prefix(newline ? length + 1 : length);
+    source_.consume(newline ? seen + 1 : seen);
     ++line_number_;
     return true;
+}
+
+bool LineReader::holds_zero(std::string_view window, size_t length) {
+    const uint64_t start = source_.offset();
+    const uint64_t end = start + length;
+    if (end > clean_until_ && zero_at_ == NO_ZERO) {
+        // One search runs ahead of the line to serve the lines after it (a call per line would cost 5%
+        // of reading an XYZ file), but not far: the text may end where binary data begins (a PLY header).
+        const size_t from = static_cast<size_t>(std::max(clean_until_, start) - start);
+        const size_t to = std::min(window.size(), length + ZERO_SEARCH_AHEAD);
+        const char* zero = find_byte(window, from, to, '\0');
+        zero_at_ = zero ? start + static_cast<uint64_t>(zero - window.data()) : NO_ZERO;
+        clean_until_ = zero ? zero_at_ : start + to;
+    }
+    return zero_at_ < end;
+}
+
+bool LineReader::refuse(std::string why) {
+    ++line_number_;
+    error_ = std::move(why);
+    return false;
 }
 
 bool TokenSplitter::is_separator(char c) const {
@@ -48,6 +94,12 @@ bool TokenStream::next(std::string_view& token) {
         splitter_ = TokenSplitter(line);
     }
     return true;
+}
+
+std::optional<uint64_t> TokenStream::bytes_left() const {
+    const std::optional<uint64_t> unread = source_.bytes_left();
+    if (!unread) return std::nullopt;
+    return *unread + splitter_.remaining();
 }
 
 namespace {

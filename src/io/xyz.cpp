@@ -21,8 +21,8 @@ std::string_view strip_xyz_comment(std::string_view line) {
 
 } // namespace
 
-IoStatus read_xyz(std::string_view text, MeshData& out) {
-    LineReader lines(text);
+IoStatus read_xyz(ByteSource& source, MeshData& out) {
+    LineReader lines(source);
     std::string_view line, word;
     bool first_data_line = true;
     while (lines.next(line)) {
@@ -48,6 +48,7 @@ IoStatus read_xyz(std::string_view text, MeshData& out) {
             return line_error(lines.line_number(), "more than 4294967294 points");
         }
     }
+    if (lines.failed()) return line_error(lines.line_number(), lines.error());
     return IoStatus::success();
 }
 
