@@ -41,7 +41,8 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 bool same_mesh(const MeshData& a, const MeshData& b) {
-    return same_bits(a.positions, b.positions) && a.triangles == b.triangles && a.has_faces == b.has_faces;
+    return same_bits(a.positions, b.positions) && a.triangles == b.triangles && a.has_faces == b.has_faces &&
+           a.non_finite_at == b.non_finite_at;
 }
 
 // Reads `bytes` through a source that hands them out 1 to 7 at a time into a 16-byte first buffer, as
@@ -153,6 +154,17 @@ std::vector<std::array<double, 9>> triangle_corners(const MeshData& mesh) {
 std::string temp_path(const std::string& name) {
     const char* dir = std::getenv("TMPDIR");
     return std::string(dir ? dir : "/tmp") + "/dbrg_test_io_" + std::to_string(std::random_device()()) + "_" + name;
+}
+
+// Writes `bytes` to a new temporary file named like `name`; returns its path.
+std::string write_temp_file(const std::string& name, std::string_view bytes) {
+    const std::string path = temp_path(name);
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    REQUIRE(file);
+    const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), file);
+    std::fclose(file);
+    REQUIRE(written == bytes.size());
+    return path;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -294,6 +306,198 @@ TEST_CASE("non-finite coordinates round-trip as they are") {
         CHECK(back.positions[2] == -inf);
     }
 }
+
+namespace {
+
+// Text built a line at a time, counting the lines.
+struct LineWriter {
+    std::string text;
+    size_t lines = 0;
+
+    // Appends `line` and returns its place as the readers name it ("line 7").
+    std::string add(const std::string& line) {
+        text += line + "\n";
+        return line_place(++lines);
+    }
+};
+
+std::string number_text(double value) {
+    std::string text;
+    append_double(text, value);
+    return text;
+}
+
+// A file in one format whose third and fourth vertices each hold the given value among their coordinates,
+// and the places of those two values as a reader must name them. Values that are not coordinates (normals,
+// colours, extra columns) are non-finite everywhere: the readers must not judge them.
+struct PlacedSample {
+    std::string file_name;  // its extension chooses the reader
+    MeshFormat format;
+    std::string bytes;
+    std::string third_place, fourth_place;
+};
+
+std::vector<PlacedSample> placed_samples(double third, double fourth) {
+    const std::string t = number_text(third), f = number_text(fourth);
+    std::vector<PlacedSample> samples;
+    {
+        PlacedSample s{"points.xyz", MeshFormat::xyz, "", "", ""};
+        LineWriter w;
+        w.add("# x y z intensity");
+        w.add("0 0 0 nan");
+        w.add("");
+        w.add("1,0,0,inf");
+        s.third_place = w.add("0 " + t + " 1 nan");
+        s.fourth_place = w.add(f + " 1 1 -inf");
+        s.bytes = w.text;
+        samples.push_back(s);
+    }
+    {
+        PlacedSample s{"mesh.obj", MeshFormat::obj, "", "", ""};
+        LineWriter w;
+        w.add("# a comment");
+        w.add("vn nan 0 0");
+        w.add("v 0 0 0 nan nan nan");
+        w.add("v 1 0 0");
+        w.add("vt inf 0");
+        s.third_place = w.add("v 0 1 " + t);
+        s.fourth_place = w.add("v " + f + " 0 1");
+        w.add("f 1 2 3 4");
+        s.bytes = w.text;
+        samples.push_back(s);
+    }
+    {
+        PlacedSample s{"mesh.off", MeshFormat::off, "", "", ""};
+        LineWriter w;
+        w.add("COFF");
+        w.add("# vertices, faces, edges");
+        w.add("4 1 0");
+        w.add("0 0 0 nan 0 0 1");
+        w.add("1 0 0 inf 0 0 1");
+        s.third_place = w.add(t + " 1 0 0 nan 0 1");
+        w.add("");
+        s.fourth_place = w.add("0 0 " + f + " 0 0 nan 1");
+        w.add("4 0 1 2 3");
+        s.bytes = w.text;
+        samples.push_back(s);
+    }
+    {
+        PlacedSample s{"ascii.ply", MeshFormat::ply_ascii, "", "", ""};
+        LineWriter w;
+        for (const char* line : {"ply", "format ascii 1.0", "element vertex 4", "property float nx", "property float x",
+                                 "property float y", "property float z", "element face 1",
+                                 "property list uchar int vertex_indices", "end_header"}) {
+            w.add(line);
+        }
+        w.add("nan 0 0 0");
+        w.add("inf 1 0 0");
+        // Values may be laid out on any lines: the place is the line of the value itself.
+        w.add("nan 0");
+        s.third_place = w.add(t + " 1");
+        s.fourth_place = w.add("-inf 0 0 " + f);
+        w.add("4 0 1 2 3");
+        s.bytes = w.text;
+        samples.push_back(s);
+    }
+    {
+        PlacedSample s{"binary.ply", MeshFormat::ply_binary, "", "", ""};
+        ByteWriter w;
+        w.big_endian = true;
+        w.text("ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty float nx\nproperty double x\n"
+               "property float y\nproperty double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n");
+        const double nan = std::nan("");
+        w.put(float(nan)).put(0.0).put(0.0f).put(0.0);
+        w.put(float(nan)).put(1.0).put(0.0f).put(0.0);
+        w.put(float(nan)).put(0.0).put(1.0f);
+        s.third_place = byte_place(w.bytes.size());
+        w.put(third);
+        w.put(float(nan));
+        s.fourth_place = byte_place(w.bytes.size());
+        w.put(fourth).put(0.0f).put(1.0);
+        w.put(uint8_t(4)).put(int32_t(0)).put(int32_t(1)).put(int32_t(2)).put(int32_t(3));
+        s.bytes = w.bytes;
+        samples.push_back(s);
+    }
+    {
+        PlacedSample s{"binary.stl", MeshFormat::stl, "", "", ""};
+        ByteWriter w;
+        w.text(std::string(80, ' ')).put(uint32_t(2));
+        const float nan = std::nanf("");
+        // Corners repeat across triangles; the third and fourth distinct ones hold the values.
+        w.put(nan).put(nan).put(nan).put(0.0f).put(0.0f).put(0.0f).put(1.0f).put(0.0f).put(0.0f).put(0.0f).put(1.0f);
+        s.third_place = byte_place(w.bytes.size());
+        w.put(float(third)).put(uint16_t(0));
+        w.put(nan).put(nan).put(nan).put(0.0f).put(0.0f).put(0.0f).put(1.0f).put(0.0f).put(0.0f);
+        s.fourth_place = byte_place(w.bytes.size());
+        w.put(float(fourth)).put(0.0f).put(1.0f).put(uint16_t(0));
+        s.bytes = w.bytes;
+        samples.push_back(s);
+    }
+    {
+        PlacedSample s{"ascii.stl", MeshFormat::stl, "", "", ""};
+        LineWriter w;
+        w.add("solid placed");
+        w.add("facet normal nan nan nan");
+        w.add("outer loop");
+        w.add("vertex 0 0 0");
+        w.add("vertex 1 0 0");
+        s.third_place = w.add("vertex 0 " + t + " 0");
+        w.add("endloop");
+        w.add("endfacet");
+        w.add("facet normal inf 0 0");
+        w.add("outer loop");
+        w.add("vertex 0 0 0");
+        w.add("vertex 1 0 0");
+        s.fourth_place = w.add("vertex 0 0 " + f);
+        w.add("endloop");
+        w.add("endfacet");
+        w.add("endsolid placed");
+        s.bytes = w.text;
+        samples.push_back(s);
+    }
+    return samples;
+}
+
+// The index of the first vertex with a non-finite coordinate (the one the library names), or -1.
+int64_t first_non_finite_vertex(const MeshData& mesh) {
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        if (!std::isfinite(mesh.positions[i])) return static_cast<int64_t>(i / 3);
+    }
+    return -1;
+}
+
+} // namespace
+
+TEST_CASE("readers name the place of the first non-finite vertex coordinate, and only of that") {
+    const double nan = std::nan(""), inf = std::numeric_limits<double>::infinity();
+    const struct {
+        double third, fourth;
+        int64_t first_bad_vertex;  // -1: none
+    } cases[] = {{nan, 1.0, 2}, {inf, -inf, 2}, {-inf, nan, 2}, {0.5, nan, 3}, {0.5, 1.0, -1}};
+    for (const auto& c : cases) {
+        const std::vector<PlacedSample> samples = placed_samples(c.third, c.fourth);
+        for (const PlacedSample& sample : samples) {
+            CAPTURE(sample.file_name);
+            CAPTURE(c.third);
+            CAPTURE(c.fourth);
+            const MeshData mesh = read_ok(sample.bytes, sample.format);
+            REQUIRE(mesh.vertex_count() == 4);
+            CHECK(first_non_finite_vertex(mesh) == c.first_bad_vertex);
+            const std::string expected = c.first_bad_vertex == 2 ? sample.third_place : c.first_bad_vertex == 3 ? sample.fourth_place : "";
+            CHECK(mesh.non_finite_at == expected);
+
+            // A file gives what its bytes in memory give.
+            const std::string path = write_temp_file(sample.file_name, sample.bytes);
+            MeshData from_file;
+            const IoStatus status = read_mesh(path, from_file);
+            std::remove(path.c_str());
+            INFO(status.message);
+            CHECK(status.ok);
+            CHECK(same_mesh(from_file, mesh));
+        }
+    }
+}
+
 
 TEST_CASE("files round-trip through write_mesh and read_mesh") {
     const MeshData mesh = float_exact_mesh();
@@ -774,11 +978,7 @@ TEST_CASE("text that turns to binary data fails at the first line of it, read fr
         const std::string bytes = c.good_start + garbage;
         check_rejected(bytes, c.format, c.expected);
         // A file says the same, after its path.
-        const std::string path = temp_path(std::string("garbage") + c.extension);
-        std::FILE* file = std::fopen(path.c_str(), "wb");
-        REQUIRE(file);
-        REQUIRE(std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size());
-        std::fclose(file);
+        const std::string path = write_temp_file(std::string("garbage") + c.extension, bytes);
         MeshData from_buffer, from_file;
         const IoStatus buffer_status = read_mesh_buffer(bytes.data(), bytes.size(), c.format, from_buffer);
         const IoStatus file_status = read_mesh(path, from_file);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <charconv>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -33,6 +34,17 @@ void write_obj(const MeshData& mesh, std::string& out);
 void write_off(const MeshData& mesh, std::string& out);
 void write_xyz(const MeshData& mesh, std::string& out);
 void write_stl(const MeshData& mesh, std::string& out);
+
+// The places readers name in their messages and in MeshData::non_finite_at.
+inline std::string line_place(uint64_t line) { return "line " + std::to_string(line); }
+inline std::string byte_place(uint64_t offset) { return "byte offset " + std::to_string(offset); }
+
+// Records in out.non_finite_at where the input's first non-finite vertex coordinate is. `place()` names
+// the place of `value` and is called for that one value only, so a finite value costs a single test.
+template <class Place>
+void note_non_finite(MeshData& out, double value, const Place& place) {
+    if (!std::isfinite(value) && out.non_finite_at.empty()) out.non_finite_at = place();
+}
 
 // Appends the shortest decimal text that reads back as exactly `value` (locale-independent).
 inline void append_double(std::string& out, double value) {

@@ -5,7 +5,7 @@
 // makes the reader allocate more than a small multiple of the input's size, whatever its header claims.
 // Text formats refuse a zero byte (binary data, not text) and lines longer than 16 MiB; a PLY header may
 // take at most 1 MiB. Coordinates are returned exactly as stored, NaN and infinity included: judging them
-// is the caller's job.
+// is the caller's job, and MeshData::non_finite_at tells it where the first such vertex is.
 #pragma once
 
 #include <cstddef>
@@ -21,6 +21,10 @@ struct MeshData {
     std::vector<double> positions;    // x, y, z of vertex 0, then vertex 1, ...
     std::vector<uint32_t> triangles;  // three vertex indices per triangle, each < vertex_count()
     bool has_faces = false;           // the file declares faces (a PLY face element, OBJ f lines, ...), even zero
+    // Where the first NaN or infinite vertex coordinate is, in the words of the readers' messages ("line 7"
+    // in a text format, "byte offset 1234" in a binary one), or empty when all are finite: a caller that
+    // refuses such a point can then say where it is in the file. Other values (normals, colours) are not judged.
+    std::string non_finite_at;
 
     size_t vertex_count() const { return positions.size() / 3; }
     size_t triangle_count() const { return triangles.size() / 3; }

@@ -10,7 +10,7 @@ namespace dbrg::io {
 namespace {
 
 IoStatus line_error(size_t line, const std::string& what) {
-    return IoStatus::failure("OBJ line " + std::to_string(line) + ": " + what);
+    return IoStatus::failure("OBJ " + line_place(line) + ": " + what);
 }
 
 } // namespace
@@ -30,6 +30,7 @@ IoStatus read_obj(ByteSource& source, MeshData& out) {
             for (double& value : xyz) {
                 if (!tokens.next(word)) return line_error(lines.line_number(), "a 'v' line needs three coordinates");
                 if (!parse_double(word, value)) return line_error(lines.line_number(), "expected a coordinate, found " + quote_token(word));
+                note_non_finite(out, value, [&] { return line_place(lines.line_number()); });
             }
             if (out.vertex_count() >= std::numeric_limits<uint32_t>::max() - 1) {
                 return line_error(lines.line_number(), "more than 4294967294 vertices");

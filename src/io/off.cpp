@@ -11,7 +11,7 @@ namespace dbrg::io {
 namespace {
 
 IoStatus line_error(size_t line, const std::string& what) {
-    return IoStatus::failure("OFF line " + std::to_string(line) + ": " + what);
+    return IoStatus::failure("OFF " + line_place(line) + ": " + what);
 }
 
 // The failure of a text that stopped where more was due: at its end, or at a line the reader refused.
@@ -85,6 +85,7 @@ IoStatus read_off(ByteSource& source, MeshData& out) {
             double value = 0.0;
             if (!tokens.next(word)) return line_error(lines.line_number(), "a vertex line needs three coordinates");
             if (!parse_double(word, value)) return line_error(lines.line_number(), "expected a coordinate, found " + quote_token(word));
+            note_non_finite(out, value, [&] { return line_place(lines.line_number()); });
             out.positions.push_back(value);
         }
     }

@@ -93,7 +93,7 @@ struct Header {
 };
 
 IoStatus header_error(size_t line, const std::string& what) {
-    return IoStatus::failure("PLY header line " + std::to_string(line) + ": " + what);
+    return IoStatus::failure("PLY header " + line_place(line) + ": " + what);
 }
 
 ElementKind element_kind(std::string_view name) {
@@ -247,7 +247,7 @@ public:
         return true;
     }
     bool skip(PlyType type) { return take(type); }
-    // where() stays at the list's count, or moves to the first item when they run out.
+    // place() stays at the list's count, or moves to the first item when they run out.
     bool skip_list_items(PlyType type, uint64_t count) {
         const uint64_t start = source_.offset();
         const uint64_t wanted = count * type_size(type);  // a list count has at most 32 bits: no overflow
@@ -270,7 +270,7 @@ public:
     }
     bool size_known() const { return source_.size_known(); }
     // The offset of the value read last (or of the one that ran out).
-    std::string where() const { return "PLY byte offset " + std::to_string(source_.offset() - taken_); }
+    std::string place() const { return byte_place(source_.offset() - taken_); }
     const std::string& error() const { return error_; }
 
 private:
@@ -363,7 +363,8 @@ public:
         return left ? *left / 2 + 1 : std::numeric_limits<uint64_t>::max();
     }
     bool size_known() const { return tokens_.bytes_left().has_value(); }
-    std::string where() const { return "PLY line " + std::to_string(header_lines_ + tokens_.line_number()); }
+    // The line of the value read last (or of the end of the text).
+    std::string place() const { return line_place(header_lines_ + tokens_.line_number()); }
     const std::string& error() const { return error_; }
 
 private:
@@ -442,7 +443,7 @@ void minimum_item_size(const Element& element, size_t& bytes, size_t& tokens) {
 
 template <class Source>
 IoStatus read_body(const Header& header, Source& source, MeshData& out) {
-    auto fail = [&](const std::string& what) { return IoStatus::failure(source.where() + ": " + what); };
+    auto fail = [&](const std::string& what) { return IoStatus::failure("PLY " + source.place() + ": " + what); };
     CornerDecoder corners(header.vertex_count, out.triangles);
     std::string error;
     for (const Element& element : header.elements) {
@@ -464,11 +465,13 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
             corners.begin(element.kind);
             for (const Property& property : element.properties) {
                 if (!property.is_list) {
-                    const bool wanted = property.role != Role::skip;
-                    const int axis = static_cast<int>(property.role) - static_cast<int>(Role::x);
-                    if (!(wanted ? source.read_number(property.type, xyz[axis]) : source.skip(property.type))) {
-                        return fail(source.error());
+                    if (property.role == Role::skip) {
+                        if (!source.skip(property.type)) return fail(source.error());
+                        continue;
                     }
+                    double& value = xyz[static_cast<int>(property.role) - static_cast<int>(Role::x)];
+                    if (!source.read_number(property.type, value)) return fail(source.error());
+                    note_non_finite(out, value, [&] { return source.place(); });
                     continue;
                 }
                 int64_t count = 0;

@@ -89,12 +89,17 @@ IoStatus read_binary_stl(ByteSource& source, MeshData& out) {
     }
     for (uint64_t t = 0; t < count; ++t) {
         if (!source.ensure(STL_TRIANGLE_BYTES)) {
-            return IoStatus::failure("STL byte offset " + std::to_string(source.offset()) + ": the file ends after " + std::to_string(t) + " of " +
+            return IoStatus::failure("STL " + byte_place(source.offset()) + ": the file ends after " + std::to_string(t) + " of " +
                                      std::to_string(count) + " triangles");
         }
+        // The corners follow the facet normal, which is not judged.
         const unsigned char* corner = reinterpret_cast<const unsigned char*>(source.window().data()) + 12;
-        for (size_t k = 0; k < 3; ++k, corner += 12) {
+        uint64_t corner_offset = source.offset() + 12;
+        for (size_t k = 0; k < 3; ++k, corner += 12, corner_offset += 12) {
             const double xyz[3] = {load_float32_le(corner), load_float32_le(corner + 4), load_float32_le(corner + 8)};
+            for (size_t axis = 0; axis < 3; ++axis) {
+                note_non_finite(out, xyz[axis], [&] { return byte_place(corner_offset + 4 * axis); });
+            }
             if (!merger.add(xyz)) return IoStatus::failure("STL: more than 4294967294 distinct vertices");
         }
         source.consume(STL_TRIANGLE_BYTES);
@@ -103,7 +108,7 @@ IoStatus read_binary_stl(ByteSource& source, MeshData& out) {
 }
 
 IoStatus read_ascii_stl(ByteSource& source, MeshData& out) {
-    auto fail = [](size_t line, const std::string& what) { return IoStatus::failure("STL line " + std::to_string(line) + ": " + what); };
+    auto fail = [](size_t line, const std::string& what) { return IoStatus::failure("STL " + line_place(line) + ": " + what); };
     LineReader lines(source);
     std::string_view line, word;
     VertexMerger merger(out);
@@ -123,6 +128,7 @@ IoStatus read_ascii_stl(ByteSource& source, MeshData& out) {
             double xyz[3];
             for (double& value : xyz) {
                 if (!tokens.next(word) || !parse_double(word, value)) return fail(lines.line_number(), "a 'vertex' line needs three coordinates");
+                note_non_finite(out, value, [&] { return line_place(lines.line_number()); });
             }
             if (!merger.add(xyz)) return fail(lines.line_number(), "more than 4294967294 distinct vertices");
         } else if (word == "endfacet") {

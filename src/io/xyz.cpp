@@ -9,7 +9,7 @@ namespace dbrg::io {
 namespace {
 
 IoStatus line_error(size_t line, const std::string& what) {
-    return IoStatus::failure("XYZ line " + std::to_string(line) + ": " + what);
+    return IoStatus::failure("XYZ " + line_place(line) + ": " + what);
 }
 
 // Comments start with '#' or "//".
@@ -42,6 +42,7 @@ IoStatus read_xyz(ByteSource& source, MeshData& out) {
             double value = 0.0;
             if (k > 0 && !tokens.next(word)) return line_error(lines.line_number(), "a point needs three coordinates");
             if (!parse_double(word, value)) return line_error(lines.line_number(), "expected a coordinate, found " + quote_token(word));
+            note_non_finite(out, value, [&] { return line_place(lines.line_number()); });
             out.positions.push_back(value);
         }
         if (out.vertex_count() >= std::numeric_limits<uint32_t>::max()) {
