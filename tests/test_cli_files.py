@@ -1,5 +1,6 @@
 """The dbrg program's files and exits: outputs replaced only when completely written, outputs checked before
 any work, no abort, and the messages a user reads. Usage: python3 test_cli_files.py PATH_TO_DBRG"""
+import math
 import os
 import resource
 import signal
@@ -227,6 +228,30 @@ class Messages(Folder):
         self.assertEqual(code, 2)
         self.assertIn("degrees strictly between 90 and 180", err)
         self.assertNotIn("radian", err)
+
+    def test_non_finite_point_names_the_file_and_line(self):
+        # The library knows the point by its index alone; the reader knows its line. Normals are not judged.
+        samples = {
+            "pts.xyz": ["# a scan", "0 0 0", "1 0 0", "0 nan 0", "0 0 1", "1 1 1"],
+            "mesh.obj": ["# made by hand", "# four points", "vn nan 0 0", "v 0 0 0", "v 1 0 0", "v 0 1 0",
+                         "v inf 0 0", "v 1 1 1", "f 1 2 3"],
+        }
+        for name, lines in samples.items():
+            path = self.path(name)
+            with open(path, "w") as f:
+                f.write("\n".join(lines) + "\n")
+            vertex_lines = [(number, line.split()[-3:]) for number, line in enumerate(lines, 1)
+                            if line.startswith("v ") or (name.endswith(".xyz") and not line.startswith("#"))]
+            expected = next(
+                f"point {point} has a {'NaN' if math.isnan(float(value)) else 'infinite'} {'xyz'[axis]} coordinate"
+                f" ({path} line {number})"
+                for point, (number, values) in enumerate(vertex_lines)
+                for axis, value in enumerate(values) if not math.isfinite(float(value)))
+            commands = [("reconstruct", path, "-q", "-o", self.path("out.ply")), ("delaunay", path)]
+            for command in commands:
+                code, _, err = run(*command)
+                self.assertEqual(code, 1, err)
+                self.assertEqual(err, f"dbrg: DBRG_ERR_NON_FINITE_INPUT: {expected}\n")
 
     def test_help_lists_every_input_format(self):
         code, out, _ = run("reconstruct", "--help")
