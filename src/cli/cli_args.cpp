@@ -79,6 +79,14 @@ bool write_text_output(const std::string& path, const std::string& text, std::st
     return status.ok;
 }
 
+int report_library_error(dbrg_status status, const char* message, const std::string& input, const io::MeshData& points) {
+    std::string text = std::string(dbrg_status_string(status)) + ": " + message;
+    if (status == DBRG_ERR_NON_FINITE_INPUT && !input.empty() && !points.non_finite_at.empty()) {
+        text += " (" + input + " " + points.non_finite_at + ")";
+    }
+    return report_error(EXIT_FAILED, text);
+}
+
 bool check_outputs(const std::vector<std::string>& outputs, const std::string& input, std::string& error) {
     for (const std::string& output : outputs) {
         if (output.empty() || output == "-") continue;

@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "dbrg/dbrg.h"
+#include "io/mesh_io.h"
+
 namespace dbrg::cli {
 
 const int EXIT_OK = 0;
@@ -45,6 +48,11 @@ bool parse_count(const std::string& text, uint32_t& value);
 // Writes `text` to the file at `path` (a failed write leaves the old file untouched), or to stdout when
 // path is empty or "-". Returns false with a message in `error` when the file cannot be written.
 bool write_text_output(const std::string& path, const std::string& text, std::string& error);
+
+// Reports a failed library call: "dbrg: STATUS: message", where a non-finite point also names its place in
+// the input file (the library knows only the point's index; the reader knew where it was). Returns
+// EXIT_FAILED.
+int report_library_error(dbrg_status status, const char* message, const std::string& input, const io::MeshData& points);
 
 // Checks, before any work, that each of `outputs` (empty and "-" are standard output) can be written and
 // none is the file `input` (compared by device and inode, so other spellings of its path are caught too).

@@ -82,13 +82,9 @@ int run_delaunay(int argc, char** argv) {
     const dbrg_status status = dbrg_tetrahedralize(&points, &params, &tets);
     const double seconds = seconds_now() - start;
     if (status != DBRG_OK) {
-        std::string message = tets ? dbrg_tetrahedralization_message(tets) : "out of memory";
+        const std::string message = tets ? dbrg_tetrahedralization_message(tets) : "out of memory";
         dbrg_tetrahedralization_destroy(tets);
-        // The library knows only the point's index; the reader knows where that point is in the file.
-        if (status == DBRG_ERR_NON_FINITE_INPUT && !mesh.non_finite_at.empty()) {
-            message += " (" + args.positional[0] + " " + mesh.non_finite_at + ")";
-        }
-        return report_error(EXIT_FAILED, std::string(dbrg_status_string(status)) + ": " + message);
+        return report_library_error(status, message.c_str(), args.positional[0], mesh);
     }
     io::JsonObject json;
     json.add_unsigned("points", mesh.vertex_count())

@@ -255,13 +255,9 @@ int run_reconstruct(int argc, char** argv) {
         return report_error(EXIT_FAILED, snapshots.error);
     }
     if (status != DBRG_OK) {
-        std::string message = result ? dbrg_mesh_message(result) : "out of memory";
+        const std::string message = result ? dbrg_mesh_message(result) : "out of memory";
         dbrg_mesh_destroy(result);
-        // The library knows only the point's index; the reader knows where that point is in the file.
-        if (status == DBRG_ERR_NON_FINITE_INPUT && !mesh.non_finite_at.empty()) {
-            message += " (" + input + " " + mesh.non_finite_at + ")";
-        }
-        return report_error(EXIT_FAILED, std::string(dbrg_status_string(status)) + ": " + message);
+        return report_library_error(status, message.c_str(), input, mesh);
     }
 
     start = seconds_now();
