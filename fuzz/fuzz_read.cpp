@@ -32,7 +32,7 @@ size_t memory_allowance(size_t input_size) { return 64 * input_size + (64 << 10)
 bool same_mesh(const io::MeshData& a, const io::MeshData& b) {
     const bool same_positions = a.positions.size() == b.positions.size() &&
         (a.positions.empty() || std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(double)) == 0);
-    return same_positions && a.triangles == b.triangles && a.has_faces == b.has_faces;
+    return same_positions && a.triangles == b.triangles && a.has_faces == b.has_faces && a.non_finite_at == b.non_finite_at;
 }
 
 // Reads the input through a source that hands it out in pieces of 1 to 13 bytes (sizes set by the input
