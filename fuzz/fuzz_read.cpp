@@ -16,8 +16,8 @@
 #include "fuzz_check.h"
 #include "io/formats.h"
 #include "io/mesh_io.h"
-#include "io/mesh_report.h"
-#include "io/surface_distance.h"
+#include "measure/mesh_report.h"
+#include "measure/surface_distance.h"
 
 using namespace dbrg;
 
@@ -83,11 +83,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!mesh.triangles.empty()) FUZZ_CHECK(mesh.has_faces);
 
     // The report takes any valid mesh, however tangled: bow-ties, repeated faces, NaN corners.
-    io::MeshReport report;
-    FUZZ_CHECK(io::make_mesh_report(mesh, report).ok);
+    measure::MeshReport report;
+    FUZZ_CHECK(measure::make_mesh_report(mesh, report).ok);
     FUZZ_CHECK(report.faces == mesh.triangle_count());
     FUZZ_CHECK(report.vertices + report.vertices_isolated == mesh.vertex_count());
-    FUZZ_CHECK(!io::to_json(report).empty());
+    FUZZ_CHECK(!measure::to_json(report).empty());
 
     // So does the surface distance, here between the first and second half of the triangles: a measure or
     // none, never a NaN, a negative or a hang.
@@ -95,7 +95,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const size_t half = 3 * (mesh.triangle_count() / 2);
     first.triangles.resize(half);
     second.triangles.erase(second.triangles.begin(), second.triangles.begin() + long(half));
-    for (const auto& d : {io::surface_distance(first, second), io::surface_distance(second, first)}) {
+    for (const auto& d : {measure::surface_distance(first, second), measure::surface_distance(second, first)}) {
         if (!d) continue;
         FUZZ_CHECK(std::isfinite(d->max) && d->mean >= 0 && d->mean <= d->max);
     }

@@ -16,7 +16,7 @@
 #include "exact_geometry.h"
 #include "fuzz_check.h"
 #include "fuzz_input.h"
-#include "io/mesh_report.h"
+#include "measure/mesh_report.h"
 #include "point_producer.h"
 #include "support/counting_allocator.h"
 
@@ -195,8 +195,8 @@ void check_result(const dbrg_mesh* mesh, const PointSet& set, const std::vector<
         FUZZ_CHECK_WHY(canonical[v] == v, "a merged duplicate is not represented by its smallest input index");
         FUZZ_CHECK_WHY(v != data.triangles[i / 3 * 3 + (i + 1) % 3], "a triangle repeats a corner");
     }
-    io::MeshReport report;
-    FUZZ_CHECK(io::make_mesh_report(data, report).ok);
+    measure::MeshReport report;
+    FUZZ_CHECK(measure::make_mesh_report(data, report).ok);
     FUZZ_CHECK(report.edges_nonmanifold == 0);
     FUZZ_CHECK(report.vertices_nonmanifold == 0);
     FUZZ_CHECK(report.oriented);

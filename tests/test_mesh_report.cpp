@@ -17,11 +17,12 @@
 #include <vector>
 
 #include "io/mesh_io.h"
-#include "io/mesh_report.h"
+#include "measure/mesh_report.h"
 #include "predicates/exact_determinants.h"
 #include "support/shared_data.h"
 
 using namespace dbrg::io;
+using namespace dbrg::measure;
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "core/splitmix64.h"
 #include "dbrg/dbrg.h"
-#include "io/mesh_report.h"
+#include "measure/mesh_report.h"
 #include "samples/samples.h"
 #include "support/mesh_checks.h"
 
@@ -28,7 +28,7 @@ void require_closed(const std::vector<double>& xyz, int genus, const char* what)
     CAPTURE(std::string(what));
     const test::Reconstruction result = test::reconstruct(xyz);
     REQUIRE(result.status == DBRG_OK);
-    const io::MeshReport report = test::report_of(xyz, result.triangles);
+    const measure::MeshReport report = test::report_of(xyz, result.triangles);
     test::require_valid_manifold(report);
     CHECK(report.edges_boundary == 0);
     CHECK(report.components == 1);
@@ -134,7 +134,7 @@ TEST_CASE("two sheets closer than the spacing: always a valid manifold, often cl
             const std::vector<double> xyz = overlapping_spheres(points, 1.97, seed);
             const test::Reconstruction result = test::reconstruct(xyz);
             REQUIRE(result.status == DBRG_OK);
-            const io::MeshReport report = test::report_of(xyz, result.triangles);
+            const measure::MeshReport report = test::report_of(xyz, result.triangles);
             test::require_valid_manifold(report);
             closed_genus_0 += report.edges_boundary == 0 && report.genus == 0 ? 1 : 0;
         }
@@ -160,7 +160,7 @@ TEST_CASE("noise: jitter of a fraction of the spacing still gives a valid manifo
         const std::vector<double> noisy = jittered(clean, fraction * spacing, 2);
         const test::Reconstruction result = test::reconstruct(noisy);
         REQUIRE(result.status == DBRG_OK);
-        const io::MeshReport report = test::report_of(noisy, result.triangles);
+        const measure::MeshReport report = test::report_of(noisy, result.triangles);
         test::require_valid_manifold(report);
         MESSAGE("jitter " << fraction << " of the spacing: " << report.edges_boundary << " boundary edges, "
                           << report.components << " components, " << report.faces << " faces");
@@ -178,7 +178,7 @@ TEST_CASE("outliers: a few stray points far from the surface do not break it") {
     }
     const test::Reconstruction result = test::reconstruct(xyz);
     REQUIRE(result.status == DBRG_OK);
-    const io::MeshReport report = test::report_of(xyz, result.triangles);
+    const measure::MeshReport report = test::report_of(xyz, result.triangles);
     test::require_valid_manifold(report);
     MESSAGE("torus with 20 outliers: " << report.edges_boundary << " boundary edges, genus "
                                        << (report.genus ? std::to_string(*report.genus) : "-"));

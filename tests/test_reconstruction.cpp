@@ -14,7 +14,7 @@
 
 #include "dbrg/dbrg.h"
 #include "io/mesh_io.h"
-#include "io/mesh_report.h"
+#include "measure/mesh_report.h"
 #include "samples/samples.h"
 #include "support/mesh_checks.h"
 #include "support/shared_data.h"
@@ -36,7 +36,7 @@ TEST_CASE("closed sample shapes come out as closed oriented manifolds of the rig
         const std::vector<double> xyz = samples::sample(c.shape, c.points);
         const test::Reconstruction result = test::reconstruct(xyz);
         REQUIRE(result.status == DBRG_OK);
-        const io::MeshReport report = test::report_of(xyz, result.triangles);
+        const measure::MeshReport report = test::report_of(xyz, result.triangles);
         test::require_valid_manifold(report);
         CHECK(report.components == 1);
         CHECK(report.edges_boundary == 0);
@@ -56,7 +56,7 @@ TEST_CASE("open sample shapes keep their borders and bridge no opening") {
         const std::vector<double> xyz = samples::sample(shape, 3000);
         const test::Reconstruction result = test::reconstruct(xyz);
         REQUIRE(result.status == DBRG_OK);
-        const io::MeshReport report = test::report_of(xyz, result.triangles);
+        const measure::MeshReport report = test::report_of(xyz, result.triangles);
         test::require_valid_manifold(report);
         CHECK(report.components == 1);
         CHECK(report.boundary_loops == uint64_t(facts.boundary_loops));
@@ -108,12 +108,12 @@ Comparison compare(const io::MeshData& reference, const std::vector<uint32_t>& t
     io::MeshData mesh;
     mesh.positions = reference.positions;
     mesh.triangles = triangles;
-    io::MeshReport report;
-    REQUIRE(io::add_face_recall(mesh, reference, report).ok);
-    REQUIRE(io::add_reference_distance(mesh, reference, report).ok);
+    measure::MeshReport report;
+    REQUIRE(measure::add_face_recall(mesh, reference, report).ok);
+    REQUIRE(measure::add_reference_distance(mesh, reference, report).ok);
     REQUIRE(report.face_recall.has_value());
     REQUIRE(report.reference_distance.has_value());
-    const io::ReferenceDistance& d = *report.reference_distance;
+    const measure::ReferenceDistance& d = *report.reference_distance;
     REQUIRE(d.side_mean.has_value());
     REQUIRE(d.to_reference.has_value());
     REQUIRE(d.from_reference.has_value());
@@ -145,7 +145,7 @@ TEST_CASE("a tessellated torus's vertices give back its surface: its triangles, 
         const io::MeshData reference = staggered_torus(120, 40, jitter);
         const test::Reconstruction result = test::reconstruct(reference.positions);
         REQUIRE(result.status == DBRG_OK);
-        const io::MeshReport report = test::report_of(reference.positions, result.triangles);
+        const measure::MeshReport report = test::report_of(reference.positions, result.triangles);
         test::require_valid_manifold(report);
         REQUIRE(report.genus.has_value());
         CHECK(*report.genus == 1);
@@ -244,7 +244,7 @@ TEST_CASE("a lattice cube's surface, massively cospherical, is still a valid man
     }
     const test::Reconstruction result = test::reconstruct(xyz);
     REQUIRE(result.status == DBRG_OK);
-    const io::MeshReport report = test::report_of(xyz, result.triangles);
+    const measure::MeshReport report = test::report_of(xyz, result.triangles);
     test::require_valid_manifold(report);
     MESSAGE("lattice cube: " << report.faces << " faces, " << report.edges_boundary << " boundary edges");
 }
@@ -285,7 +285,7 @@ TEST_CASE("the closed models of the shared data come out closed, the bunny keeps
         REQUIRE(read.ok);
         const test::Reconstruction result = test::reconstruct(mesh.positions);
         REQUIRE(result.status == DBRG_OK);
-        const io::MeshReport report = test::report_of(mesh.positions, result.triangles);
+        const measure::MeshReport report = test::report_of(mesh.positions, result.triangles);
         test::require_valid_manifold(report);
         CHECK(report.edges_boundary == 0);
         REQUIRE(report.genus.has_value());
@@ -351,7 +351,7 @@ TEST_CASE("snapshots show growth at evenly spaced shares of the points, each ori
             }
             if (k > 0) CHECK(snapshots.triangles[k].size() > snapshots.triangles[k - 1].size());
             // Fronts may touch at a vertex before they join, so a bow-tie vertex is allowed while growing.
-            const io::MeshReport report = test::report_of(xyz, snapshots.triangles[k]);
+            const measure::MeshReport report = test::report_of(xyz, snapshots.triangles[k]);
             CHECK(report.edges_nonmanifold == 0);
             CHECK(report.oriented);
             CHECK(report.degenerate_faces == 0);

@@ -5,7 +5,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "io/mesh_io.h"
-#include "io/mesh_report.h"
+#include "measure/mesh_report.h"
 
 namespace dbrg::cli {
 namespace {
@@ -62,24 +62,24 @@ int run_stats(int argc, char** argv) {
     io::MeshData mesh;
     io::IoStatus status = io::read_mesh(args.positional[0], mesh);
     if (!status) return report_error(EXIT_FAILED, status.message);
-    io::MeshReport report;
-    status = io::make_mesh_report(mesh, report, args.has("--weld") ? io::VertexIdentity::position : io::VertexIdentity::index);
+    measure::MeshReport report;
+    status = measure::make_mesh_report(mesh, report, args.has("--weld") ? measure::VertexIdentity::position : measure::VertexIdentity::index);
     if (!status) return report_error(EXIT_FAILED, status.message);
 
     if (args.has("--reference")) {
         io::MeshData reference;
         status = io::read_mesh(args.value("--reference"), reference);
-        if (status) status = io::add_face_recall(mesh, reference, report);
-        if (status) status = io::add_reference_distance(mesh, reference, report);
+        if (status) status = measure::add_face_recall(mesh, reference, report);
+        if (status) status = measure::add_reference_distance(mesh, reference, report);
         if (!status) return report_error(EXIT_FAILED, status.message);
     }
     if (args.has("--points")) {
         io::MeshData points;
         status = io::read_mesh(args.value("--points"), points);
-        if (status) status = io::add_points_used(mesh, points, report);
+        if (status) status = measure::add_points_used(mesh, points, report);
         if (!status) return report_error(EXIT_FAILED, status.message);
     }
-    if (!write_text_output(args.value("--output"), io::to_json(report), error)) return report_error(EXIT_FAILED, error);
+    if (!write_text_output(args.value("--output"), measure::to_json(report), error)) return report_error(EXIT_FAILED, error);
     return EXIT_OK;
 }
 

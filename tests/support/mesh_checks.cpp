@@ -44,17 +44,17 @@ Reconstruction reconstruct(const std::vector<double>& xyz, const dbrg_params* pa
     return reconstruct(points, params);
 }
 
-io::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles) {
+measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles) {
     io::MeshData mesh;
     mesh.positions = xyz;
     mesh.triangles = triangles;
     mesh.has_faces = true;
-    io::MeshReport report;
-    REQUIRE(io::make_mesh_report(mesh, report).ok);
+    measure::MeshReport report;
+    REQUIRE(measure::make_mesh_report(mesh, report).ok);
     return report;
 }
 
-void require_valid_manifold(const io::MeshReport& report) {
+void require_valid_manifold(const measure::MeshReport& report) {
     CHECK(report.faces > 0);
     CHECK(report.edges_nonmanifold == 0);
     CHECK(report.vertices_nonmanifold == 0);

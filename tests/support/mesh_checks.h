@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "dbrg/dbrg.h"
-#include "io/mesh_report.h"
+#include "measure/mesh_report.h"
 
 namespace dbrg::test {
 
@@ -22,10 +22,10 @@ Reconstruction reconstruct(const std::vector<double>& xyz, const dbrg_params* pa
 Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params = nullptr);
 
 // `dbrg stats` figures of the triangles over the points.
-io::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles);
+measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles);
 
 // The library's promise: no non-manifold edge or vertex, consistently oriented, no degenerate or duplicate face.
-void require_valid_manifold(const io::MeshReport& report);
+void require_valid_manifold(const measure::MeshReport& report);
 
 // Six times the signed volume enclosed (positive when closed and facing outward).
 double signed_volume(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles);

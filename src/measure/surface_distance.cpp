@@ -1,12 +1,12 @@
 // Sampled surface-to-surface distance: a bounding volume hierarchy over the target's triangles, searched
 // branch and bound for each sample point, in a frame scaled to the unit box so that no square overflows.
-#include "io/surface_distance.h"
+#include "measure/surface_distance.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace dbrg::io {
+namespace dbrg::measure {
 namespace {
 
 struct Point {
@@ -243,4 +243,4 @@ std::optional<SurfaceDistance> surface_distance(const MeshData& from, const Mesh
     return out;
 }
 
-} // namespace dbrg::io
+} // namespace dbrg::measure

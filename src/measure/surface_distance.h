@@ -11,7 +11,11 @@
 
 #include "io/mesh_io.h"
 
-namespace dbrg::io {
+namespace dbrg::measure {
+
+// Meshes come as the readers give them.
+using io::IoStatus;
+using io::MeshData;
 
 struct SurfaceDistance {
     double max = 0;
@@ -27,4 +31,4 @@ struct SurfaceDistance {
 // The arrays must be well formed (indices below the vertex count).
 std::optional<SurfaceDistance> surface_distance(const MeshData& from, const MeshData& to);
 
-} // namespace dbrg::io
+} // namespace dbrg::measure

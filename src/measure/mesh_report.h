@@ -30,9 +30,13 @@
 #include <string>
 
 #include "io/mesh_io.h"
-#include "io/surface_distance.h"
+#include "measure/surface_distance.h"
 
-namespace dbrg::io {
+namespace dbrg::measure {
+
+// Meshes come as the readers give them.
+using io::IoStatus;
+using io::MeshData;
 
 // How far a mesh and a reference mesh stray from each other (see surface_distance), and the mean length
 // of the reference's triangle sides, the unit to read that in. Each figure is none when it cannot be
@@ -101,4 +105,4 @@ IoStatus add_points_used(const MeshData& mesh, const MeshData& points, MeshRepor
 // genus and face_recall as null when unknown). Ends with a newline.
 std::string to_json(const MeshReport& report);
 
-} // namespace dbrg::io
+} // namespace dbrg::measure

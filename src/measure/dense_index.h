@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace dbrg::io {
+namespace dbrg::measure {
 
 inline uint64_t mix_bits(uint64_t h) {
     h ^= h >> 30;
@@ -81,4 +81,4 @@ private:
     Hash hash_;
 };
 
-} // namespace dbrg::io
+} // namespace dbrg::measure
