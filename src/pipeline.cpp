@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "core/point_input.h"
+#include "core/progress_span.h"
 #include "core/status.h"
 #include "delaunay/point_conditioning.h"
 #include "delaunay/tetgen_backend.h"
@@ -17,7 +18,8 @@
 namespace dbrg {
 namespace {
 
-// Reads, checks and conditions the caller's points; the raw copy is released before returning.
+// Reads, checks and conditions the caller's points; the raw copy is released before returning. Each step
+// reports its share of DBRG_STAGE_VALIDATE, the renumbering last, up to 1.
 dbrg_status prepare_points(const dbrg_points* points, Context& context, ConditionedPoints& conditioned) {
     const double start = seconds_now();
     DBRG_PROPAGATE(context.report(DBRG_STAGE_VALIDATE, 0.0));
@@ -30,7 +32,7 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
     context.stats.unique_points = conditioned.size();
     context.stats.duplicates_merged = conditioned.duplicates_merged;
     context.stats.seconds_validate = seconds_now() - start;
-    return context.report(DBRG_STAGE_VALIDATE, 1.0);
+    return DBRG_OK;
 }
 
 dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
@@ -39,8 +41,9 @@ dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& contex
 }
 
 // Which components to turn over: the closed ones (no boundary half-edge) whose signed volume is negative.
-dbrg_status find_inward_components(const Surface& surface, const ConditionedPoints& points, Context& context,
+dbrg_status find_inward_components(const Surface& surface, const ConditionedPoints& points, const ProgressSpan& progress,
                                    Array<uint32_t>& face_component, Array<uint8_t>& flip) {
+    Context& context = progress.context();
     const uint32_t components = surface.label_components(face_component);
     if (components == NO_FACE) return context.fail_out_of_memory();
     Array<double> volume(context.memory);
@@ -49,6 +52,7 @@ dbrg_status find_inward_components(const Surface& surface, const ConditionedPoin
         return context.fail_out_of_memory();
     }
     for (uint32_t f = 0; f < surface.face_count(); ++f) {
+        DBRG_PROPAGATE(progress.report_at(f, surface.face_count()));
         const uint32_t k = face_component[f];
         if (k == NO_FACE) continue;
         for (uint32_t i = 0; i < 3; ++i) open[k] |= surface.is_boundary(3 * f + i) ? 1 : 0;
@@ -65,12 +69,16 @@ dbrg_status find_inward_components(const Surface& surface, const ConditionedPoin
 // Triangles in the caller's indices, closed components turned outward, and the boundary loops.
 dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& conditioned, Context& context,
                          SurfaceResult& result) {
+    const ProgressSpan progress(context, DBRG_STAGE_OUTPUT);
+    DBRG_PROPAGATE(progress.report(0, 1));
     const uint32_t faces = surface.face_count();
     Array<uint32_t> face_component(context.memory);
     Array<uint8_t> flip(context.memory);
-    DBRG_PROPAGATE(find_inward_components(surface, conditioned, context, face_component, flip));
+    DBRG_PROPAGATE(find_inward_components(surface, conditioned, progress.part(0.0, 0.4), face_component, flip));
     if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
+    const ProgressSpan writing = progress.part(0.4, 0.7), tracing = progress.part(0.7, 0.9), counting = progress.part(0.9, 1.0);
     for (uint32_t f = 0; f < faces; ++f) {
+        DBRG_PROPAGATE(writing.report_at(f, faces));
         if (surface.face_removed(f)) continue;
         const bool turn = flip[face_component[f]] != 0;
         result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
@@ -83,6 +91,7 @@ dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& condit
     if (!visited.resize(3 * size_t(faces), 0) || !result.loop_offsets.push_back(0)) return context.fail_out_of_memory();
     uint32_t boundary_edges = 0;
     for (uint32_t start = 0; start < 3 * faces; ++start) {
+        DBRG_PROPAGATE(tracing.report_at(start, 3 * size_t(faces)));
         if (!surface.is_boundary(start) || visited[start]) continue;
         uint32_t h = start;
         do {
@@ -96,7 +105,10 @@ dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& condit
         }
     }
     uint32_t vertices_used = 0;
-    for (uint32_t v = 0; v < surface.vertex_count(); ++v) vertices_used += surface.is_used(v) ? 1 : 0;
+    for (uint32_t v = 0; v < surface.vertex_count(); ++v) {
+        DBRG_PROPAGATE(counting.report_at(v, surface.vertex_count()));
+        vertices_used += surface.is_used(v) ? 1 : 0;
+    }
     context.stats.triangles = surface.live_face_count();
     context.stats.vertices_used = vertices_used;
     context.stats.boundary_edges = boundary_edges;
@@ -144,6 +156,8 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
     Tetrahedralization delaunay(context.memory);
     DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
+    const ProgressSpan progress(context, DBRG_STAGE_OUTPUT);
+    DBRG_PROPAGATE(progress.report(0, 1));
 
     // Finite tetrahedra are numbered in the order of their canonical corners (counting sort by the first,
     // then the few that share it by the other three), and written with their corners in that order: the
@@ -164,8 +178,12 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
         return std::min(std::min(delaunay.tet_vertex(t, 0), delaunay.tet_vertex(t, 1)),
                         std::min(delaunay.tet_vertex(t, 2), delaunay.tet_vertex(t, 3)));
     };
+    const ProgressSpan counting = progress.part(0.0, 0.15), ordering = progress.part(0.15, 0.3),
+                       sorting = progress.part(0.3, 0.7), numbering = progress.part(0.7, 0.75),
+                       writing = progress.part(0.75, 1.0);
     uint32_t local[4], vertex[4], finite = 0;
     for (uint32_t t = 0; t < slots; ++t) {
+        DBRG_PROPAGATE(counting.report_at(t, slots));
         if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
         ++bucket_end[smallest(t) + 1];
         ++finite;
@@ -173,6 +191,7 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     for (size_t v = 1; v < bucket_end.size(); ++v) bucket_end[v] += bucket_end[v - 1];
     if (!order.resize(finite)) return context.fail_out_of_memory();
     for (uint32_t t = 0; t < slots; ++t) {
+        DBRG_PROPAGATE(ordering.report_at(t, slots));
         if (delaunay.tet_is_free(t) || !delaunay.tet_is_finite(t)) continue;
         order[bucket_end[smallest(t)]++] = t;  // bucket_end[v] ends as the end of v's bucket
     }
@@ -183,6 +202,7 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     };
     Array<Keyed> bucket(context.memory);
     for (size_t v = 0, begin = 0; v < delaunay.vertex_count(); begin = bucket_end[v++]) {
+        DBRG_PROPAGATE(sorting.report_at(v, delaunay.vertex_count()));
         bucket.clear();
         for (size_t i = begin; i < bucket_end[v]; ++i) {
             corners(order[i], local, vertex);
@@ -193,11 +213,15 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
         });
         for (size_t i = begin; i < bucket_end[v]; ++i) order[i] = bucket[i - begin].slot;
     }
-    for (uint32_t i = 0; i < finite; ++i) number[order[i]] = i;
+    for (uint32_t i = 0; i < finite; ++i) {
+        DBRG_PROPAGATE(numbering.report_at(i, finite));
+        number[order[i]] = i;
+    }
     if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {
         return context.fail_out_of_memory();
     }
     for (uint32_t i = 0; i < finite; ++i) {
+        DBRG_PROPAGATE(writing.report_at(i, finite));
         corners(order[i], local, vertex);
         for (uint32_t k = 0; k < 4; ++k) {
             result.tets[4 * size_t(i) + k] = conditioned.input_index[vertex[k]];

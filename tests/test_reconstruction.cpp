@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dbrg/dbrg.h"
@@ -388,4 +389,33 @@ TEST_CASE("a snapshot callback can cancel") {
     const dbrg_params params = snapshots.params(4);
     CHECK(test::reconstruct(xyz, &params).status == DBRG_ERR_CANCELLED);
     CHECK(snapshots.triangles.size() == 2);
+}
+
+TEST_CASE("validation, sorting and output report progress inside the stage, not only at its ends") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
+    struct Log {
+        std::vector<std::pair<dbrg_stage, double>> reports;
+        static int record(void* user, dbrg_stage stage, double fraction) {
+            static_cast<Log*>(user)->reports.emplace_back(stage, fraction);
+            return 0;
+        }
+    } log;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.progress = Log::record;
+    params.progress_user = &log;
+    REQUIRE(test::reconstruct(xyz, &params).status == DBRG_OK);
+    for (dbrg_stage stage : {DBRG_STAGE_VALIDATE, DBRG_STAGE_SORT, DBRG_STAGE_OUTPUT}) {
+        CAPTURE(stage);
+        CHECK(std::any_of(log.reports.begin(), log.reports.end(), [stage](const std::pair<dbrg_stage, double>& r) {
+            return r.first == stage && r.second > 0.0 && r.second < 1.0;
+        }));
+    }
+    // Stages in order, each one's fractions in order.
+    bool in_order = true;
+    for (size_t i = 1; i < log.reports.size(); ++i) {
+        const auto &a = log.reports[i - 1], &b = log.reports[i];
+        in_order = in_order && (b.first > a.first || (b.first == a.first && b.second >= a.second));
+    }
+    CHECK(in_order);
 }
