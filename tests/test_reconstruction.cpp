@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <utility>
@@ -264,12 +263,10 @@ TEST_CASE("the TetGen backend gives the same surface, or says it is not built in
 #endif
 }
 
-TEST_CASE("the closed models of the shared data come out closed, the bunny keeps its openings, all stay near their meshes") {
-    const std::string dir = test::shared_data_dir();
-    if (dir.empty() || !std::filesystem::is_directory(dir)) {
-        MESSAGE("skipped: no shared data folder at '" << dir << "' (set DBRG_DATA_DIR to point at one)");
-        return;
-    }
+TEST_CASE("the closed models of the shared data come out closed, the bunny keeps its openings, all stay near their meshes" *
+          doctest::test_suite(test::SHARED_DATA_SUITE)) {
+    const std::string dir = test::shared_data_dir_or_skip();
+    if (dir.empty()) return;
     // The folder is there, so every model must be read. The cow's mouth and the cheburashka's legs and neck come closer to themselves than the sample
     // spacing; growing bridges them there, and the small handles this makes are removed after hole filling.
     const struct {
