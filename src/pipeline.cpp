@@ -178,9 +178,12 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
         return std::min(std::min(delaunay.tet_vertex(t, 0), delaunay.tet_vertex(t, 1)),
                         std::min(delaunay.tet_vertex(t, 2), delaunay.tet_vertex(t, 3)));
     };
-    const ProgressSpan counting = progress.part(0.0, 0.15), ordering = progress.part(0.15, 0.3),
-                       sorting = progress.part(0.3, 0.7), numbering = progress.part(0.7, 0.75),
-                       writing = progress.part(0.75, 1.0);
+    // A vertex's bucket takes about a microsecond to sort, a tetrahedron's corners a few hundred nanoseconds
+    // to put in canonical order: those loops report more often than every STEP_ITEMS.
+    const ProgressSpan counting = progress.part(0.0, 0.1), ordering = progress.part(0.1, 0.2),
+                       sorting = progress.part(0.2, 0.6), numbering = progress.part(0.6, 0.65),
+                       allocating = progress.part(0.65, 0.7), writing = progress.part(0.7, 1.0);
+    const size_t VERTICES_PER_REPORT = 1 << 14, TETS_PER_REPORT = 1 << 16;
     uint32_t local[4], vertex[4], finite = 0;
     for (uint32_t t = 0; t < slots; ++t) {
         DBRG_PROPAGATE(counting.report_at(t, slots));
@@ -202,7 +205,7 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     };
     Array<Keyed> bucket(context.memory);
     for (size_t v = 0, begin = 0; v < delaunay.vertex_count(); begin = bucket_end[v++]) {
-        DBRG_PROPAGATE(sorting.report_at(v, delaunay.vertex_count()));
+        DBRG_PROPAGATE(sorting.report_at(v, delaunay.vertex_count(), VERTICES_PER_REPORT));
         bucket.clear();
         for (size_t i = begin; i < bucket_end[v]; ++i) {
             corners(order[i], local, vertex);
@@ -220,8 +223,9 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {
         return context.fail_out_of_memory();
     }
+    DBRG_PROPAGATE(allocating.report(1, 1));
     for (uint32_t i = 0; i < finite; ++i) {
-        DBRG_PROPAGATE(writing.report_at(i, finite));
+        DBRG_PROPAGATE(writing.report_at(i, finite, TETS_PER_REPORT));
         corners(order[i], local, vertex);
         for (uint32_t k = 0; k < 4; ++k) {
             result.tets[4 * size_t(i) + k] = conditioned.input_index[vertex[k]];

@@ -25,8 +25,11 @@ public:
         return context_->report(stage_, at(total == 0 ? 1.0 : double(done) / double(total)));
     }
 
-    // report(i, total) at every STEP_ITEMS-th item i of a sequential loop.
-    dbrg_status report_at(size_t i, size_t total) const { return i % STEP_ITEMS == 0 ? report(i, total) : DBRG_OK; }
+    // report(i, total) at every `every`-th item i of a sequential loop (fewer than STEP_ITEMS where an item
+    // takes more than a few nanoseconds).
+    dbrg_status report_at(size_t i, size_t total, size_t every = STEP_ITEMS) const {
+        return i % every == 0 ? report(i, total) : DBRG_OK;
+    }
 
     // Calls work(begin, end) on slices of 0 .. items - 1: steps of at most step_items(parts) items, each split
     // into `parts` slices run at once, with a report before each step. Returns DBRG_OK or DBRG_ERR_CANCELLED.
