@@ -182,7 +182,7 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     // to put in canonical order: those loops report more often than every STEP_ITEMS.
     const ProgressSpan counting = progress.part(0.0, 0.1), ordering = progress.part(0.1, 0.2),
                        sorting = progress.part(0.2, 0.6), numbering = progress.part(0.6, 0.65),
-                       allocating = progress.part(0.65, 0.7), writing = progress.part(0.7, 1.0);
+                       writing = progress.part(0.65, 1.0);
     const size_t VERTICES_PER_REPORT = 1 << 14, TETS_PER_REPORT = 1 << 16;
     uint32_t local[4], vertex[4], finite = 0;
     for (uint32_t t = 0; t < slots; ++t) {
@@ -220,10 +220,13 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
         DBRG_PROPAGATE(numbering.report_at(i, finite));
         number[order[i]] = i;
     }
-    if (!result.tets.resize(4 * size_t(finite)) || !result.adjacency.resize(4 * size_t(finite))) {
+    // Not filled first: that would touch every page in one go, between two reports; written in order,
+    // they are touched a step at a time.
+    if (!result.tets.reserve(4 * size_t(finite)) || !result.adjacency.reserve(4 * size_t(finite))) {
         return context.fail_out_of_memory();
     }
-    DBRG_PROPAGATE(allocating.report(1, 1));
+    result.tets.resize_unwritten(4 * size_t(finite));
+    result.adjacency.resize_unwritten(4 * size_t(finite));
     for (uint32_t i = 0; i < finite; ++i) {
         DBRG_PROPAGATE(writing.report_at(i, finite, TETS_PER_REPORT));
         corners(order[i], local, vertex);
