@@ -106,29 +106,26 @@ int main(int argc, char** argv) {
     }
     printf("\n");
 
-    // The largest gap of each stage is the one ending at a report of that stage.
-    size_t largest = 1, per_stage_largest[6] = {}, per_stage_count[6] = {};
+    // Per stage: the gap before its first report (the end of the stage before it, the start of its own
+    // work) and the largest gap between two of its own reports.
+    const int STAGES = 6;
+    size_t largest = 1, count[STAGES] = {}, entering[STAGES] = {}, within[STAGES] = {};
     for (size_t i = 1; i < reports.size(); ++i) {
-        if (seconds_between(reports[i - 1], reports[i]) > seconds_between(reports[largest - 1], reports[largest])) largest = i;
+        const double gap = seconds_between(reports[i - 1], reports[i]);
+        if (gap > seconds_between(reports[largest - 1], reports[largest])) largest = i;
         const int s = reports[i].stage;
-        if (s < 0 || s >= 6) continue;
-        ++per_stage_count[s];
-        const size_t best = per_stage_largest[s];
-        if (best == 0 || seconds_between(reports[i - 1], reports[i]) > seconds_between(reports[best - 1], reports[best])) {
-            per_stage_largest[s] = i;
-        }
+        if (s < 0 || s >= STAGES) continue;
+        ++count[s];
+        size_t& best = reports[i - 1].stage == s ? within[s] : entering[s];
+        if (best == 0 || gap > seconds_between(reports[best - 1], reports[best])) best = i;
     }
     printf("%zu reports\n", reports.size() - 2);
-    describe("first report after", reports[0], reports[1]);
-    for (int s = 0; s < 6; ++s) {
-        if (per_stage_count[s] == 0) {
-            printf("%-10s no reports\n", stage_name(s));
-            continue;
-        }
-        char label[64];
-        snprintf(label, sizeof label, "%-10s %6zu reports, largest gap", stage_name(s), per_stage_count[s]);
-        describe(label, reports[per_stage_largest[s] - 1], reports[per_stage_largest[s]]);
+    for (int s = 0; s < STAGES; ++s) {
+        printf("%-10s %5zu reports\n", stage_name(s), count[s]);
+        if (entering[s]) describe("  entering", reports[entering[s] - 1], reports[entering[s]]);
+        if (within[s]) describe("  within  ", reports[within[s] - 1], reports[within[s]]);
     }
+    describe("after the last report", reports[reports.size() - 2], reports.back());
     describe("largest gap:", reports[largest - 1], reports[largest]);
     return 0;
 }
