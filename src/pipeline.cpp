@@ -3,6 +3,7 @@
 #include "pipeline.h"
 
 #include "core/point_input.h"
+#include "core/progress_span.h"
 #include "core/status.h"
 #include "delaunay/backend.h"
 #include "delaunay/canonical_order.h"
@@ -16,7 +17,8 @@
 namespace dbrg {
 namespace {
 
-// Reads, checks and conditions the caller's points; the raw copy is released before returning.
+// Reads, checks and conditions the caller's points; the raw copy is released before returning. Each step
+// reports its share of DBRG_STAGE_VALIDATE, the renumbering last, up to 1.
 dbrg_status prepare_points(const dbrg_points* points, Context& context, ConditionedPoints& conditioned) {
     const double start = seconds_now();
     DBRG_PROPAGATE(context.report(DBRG_STAGE_VALIDATE, 0.0));
@@ -29,7 +31,7 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
     context.stats.unique_points = conditioned.size();
     context.stats.duplicates_merged = conditioned.duplicates_merged;
     context.stats.seconds_validate = seconds_now() - start;
-    return context.report(DBRG_STAGE_VALIDATE, 1.0);
+    return DBRG_OK;
 }
 
 dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
@@ -92,8 +94,9 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
     Tetrahedralization delaunay(context.memory);
     DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
-
-    DBRG_PROPAGATE(write_canonical_tetrahedra(delaunay, conditioned.input_index.data(), context, result.tets,
+    const ProgressSpan progress(context, DBRG_STAGE_OUTPUT);
+    DBRG_PROPAGATE(progress.report(0, 1));
+    DBRG_PROPAGATE(write_canonical_tetrahedra(delaunay, conditioned.input_index.data(), progress, result.tets,
                                               result.adjacency));
     result.unique_points = conditioned.size();
     return context.report(DBRG_STAGE_OUTPUT, 1.0);

@@ -1,6 +1,7 @@
 // Surface output: S handed over as the caller sees it, in the caller's point indexing (see surface_output.h).
 #include "surface_output.h"
 
+#include "core/progress_span.h"
 #include "core/status.h"
 #include "core/vec3.h"
 
@@ -8,8 +9,9 @@ namespace dbrg {
 namespace {
 
 // Which components to turn over: the closed ones (no boundary half-edge) whose signed volume is negative.
-dbrg_status find_inward_components(const Surface& surface, const ConditionedPoints& points, Context& context,
+dbrg_status find_inward_components(const Surface& surface, const ConditionedPoints& points, const ProgressSpan& progress,
                                    Array<uint32_t>& face_component, Array<uint8_t>& flip) {
+    Context& context = progress.context();
     const uint32_t components = surface.label_components(face_component);
     if (components == NO_FACE) return context.fail_out_of_memory();
     Array<double> volume(context.memory);
@@ -18,6 +20,7 @@ dbrg_status find_inward_components(const Surface& surface, const ConditionedPoin
         return context.fail_out_of_memory();
     }
     for (uint32_t f = 0; f < surface.face_count(); ++f) {
+        DBRG_PROPAGATE(progress.report_at(f, surface.face_count()));
         const uint32_t k = face_component[f];
         if (k == NO_FACE) continue;
         for (uint32_t i = 0; i < 3; ++i) open[k] |= surface.is_boundary(3 * f + i) ? 1 : 0;
@@ -35,12 +38,16 @@ dbrg_status find_inward_components(const Surface& surface, const ConditionedPoin
 
 dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& conditioned, Context& context,
                          SurfaceResult& result) {
+    const ProgressSpan progress(context, DBRG_STAGE_OUTPUT);
+    DBRG_PROPAGATE(progress.report(0, 1));
     const uint32_t faces = surface.face_count();
     Array<uint32_t> face_component(context.memory);
     Array<uint8_t> flip(context.memory);
-    DBRG_PROPAGATE(find_inward_components(surface, conditioned, context, face_component, flip));
+    DBRG_PROPAGATE(find_inward_components(surface, conditioned, progress.part(0.0, 0.4), face_component, flip));
     if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
+    const ProgressSpan writing = progress.part(0.4, 0.7), tracing = progress.part(0.7, 0.9), counting = progress.part(0.9, 1.0);
     for (uint32_t f = 0; f < faces; ++f) {
+        DBRG_PROPAGATE(writing.report_at(f, faces));
         if (surface.face_removed(f)) continue;
         const bool turn = flip[face_component[f]] != 0;
         result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
@@ -53,6 +60,7 @@ dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& condit
     if (!visited.resize(3 * size_t(faces), 0) || !result.loop_offsets.push_back(0)) return context.fail_out_of_memory();
     uint32_t boundary_edges = 0;
     for (uint32_t start = 0; start < 3 * faces; ++start) {
+        DBRG_PROPAGATE(tracing.report_at(start, 3 * size_t(faces)));
         if (!surface.is_boundary(start) || visited[start]) continue;
         const bool walked = surface.walk_loop(start, [&](uint32_t h) {
             visited[h] = 1;
@@ -64,7 +72,10 @@ dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& condit
         }
     }
     uint32_t vertices_used = 0;
-    for (uint32_t v = 0; v < surface.vertex_count(); ++v) vertices_used += surface.is_used(v) ? 1 : 0;
+    for (uint32_t v = 0; v < surface.vertex_count(); ++v) {
+        DBRG_PROPAGATE(counting.report_at(v, surface.vertex_count()));
+        vertices_used += surface.is_used(v) ? 1 : 0;
+    }
     context.stats.triangles = surface.live_face_count();
     context.stats.vertices_used = vertices_used;
     context.stats.boundary_edges = boundary_edges;

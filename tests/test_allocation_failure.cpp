@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dbrg/dbrg.h"
@@ -97,6 +98,26 @@ struct Canceller {
 };
 
 const EntryPoint ENTRY_POINTS[] = {EntryPoint::reconstruct, EntryPoint::tetrahedralize};
+
+// Records the reports; cancels at the first one of stage `cancel_stage` strictly inside the stage, or at
+// the first report of the Delaunay stage (nothing after that is watched).
+struct StageWatcher {
+    std::vector<std::pair<dbrg_stage, double>> reports;
+    int cancel_stage = -1;
+
+    static int report(void* user, dbrg_stage stage, double fraction) {
+        StageWatcher& self = *static_cast<StageWatcher*>(user);
+        self.reports.emplace_back(stage, fraction);
+        const bool inside = stage == self.cancel_stage && fraction > 0.0 && fraction < 1.0;
+        return inside || stage == DBRG_STAGE_DELAUNAY ? 1 : 0;
+    }
+
+    size_t count_inside(dbrg_stage stage) const {
+        size_t inside = 0;
+        for (const auto& r : reports) inside += r.first == stage && r.second > 0.0 && r.second < 1.0;
+        return inside;
+    }
+};
 
 } // namespace
 
@@ -234,6 +255,46 @@ TEST_CASE("point counts beyond the limits fail before anything is allocated or r
         CHECK(message[0] != '\0');
         // Only the result objects themselves: nothing sized by the claimed count.
         CHECK(allocator.largest_request() < 4096);
+        require_nothing_held(allocator);
+    }
+}
+
+TEST_CASE("a large input: validation and sorting report in steps, and a cancel there stops before the Delaunay stage") {
+    // 600,000 points: every pass of validation and sorting takes several steps.
+    const std::vector<double> xyz = dbrg_test::random_sphere(600000, 51);
+    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    StageWatcher watched;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.progress = StageWatcher::report;
+    params.progress_user = &watched;
+    dbrg_mesh* mesh = nullptr;
+    CHECK(dbrg_reconstruct(&points, &params, &mesh) == DBRG_ERR_CANCELLED);  // at the Delaunay stage's first report
+    dbrg_mesh_destroy(mesh);
+    REQUIRE(watched.reports.back().first == DBRG_STAGE_DELAUNAY);
+    CHECK(watched.count_inside(DBRG_STAGE_VALIDATE) >= 20);
+    CHECK(watched.count_inside(DBRG_STAGE_SORT) >= 2);
+
+    for (dbrg_stage stage : {DBRG_STAGE_VALIDATE, DBRG_STAGE_SORT}) {
+        CAPTURE(stage);
+        test::CountingAllocator allocator;
+        StageWatcher cancelling;
+        cancelling.cancel_stage = stage;
+        params.allocator = allocator.get();
+        params.progress_user = &cancelling;
+        mesh = nullptr;
+        CHECK(dbrg_reconstruct(&points, &params, &mesh) == DBRG_ERR_CANCELLED);
+        REQUIRE(mesh != nullptr);
+        dbrg_stats stats;
+        stats.struct_size = sizeof stats;
+        REQUIRE(dbrg_mesh_stats(mesh, &stats) == DBRG_OK);
+        CHECK(stats.tetrahedra == 0);
+        CHECK(dbrg_mesh_triangle_count(mesh) == 0);
+        dbrg_mesh_destroy(mesh);
+        // Cancelled inside the stage, and no report after that one.
+        CHECK(cancelling.reports.back().first == stage);
+        CHECK(cancelling.reports.back().second < 1.0);
+        CHECK(cancelling.count_inside(stage) == 1);
         require_nothing_held(allocator);
     }
 }

@@ -90,8 +90,9 @@ TEST_CASE("brio_hilbert_order is a permutation that depends on the points only")
     const std::vector<double> xyz = random_cube(5000, 1);
     Context context(test_params());
     Array<uint32_t> a(context.memory), b(context.memory);
-    REQUIRE(brio_hilbert_order(xyz.data(), 5000, context, a) == DBRG_OK);
-    REQUIRE(brio_hilbert_order(xyz.data(), 5000, context, b) == DBRG_OK);
+    const ProgressSpan sort(context, DBRG_STAGE_SORT);
+    REQUIRE(brio_hilbert_order(xyz.data(), 5000, sort, a) == DBRG_OK);
+    REQUIRE(brio_hilbert_order(xyz.data(), 5000, sort, b) == DBRG_OK);
     std::vector<uint32_t> sorted(a.begin(), a.end());
     std::sort(sorted.begin(), sorted.end());
     for (uint32_t i = 0; i < 5000; ++i) CHECK(sorted[i] == i);
@@ -101,23 +102,32 @@ TEST_CASE("brio_hilbert_order is a permutation that depends on the points only")
 TEST_CASE("the Hilbert order and its check are the same on one thread and on several") {
     // Two slices of 20,000 points on two threads.
     const std::vector<double> xyz = random_cube(2 * 20000, 11);
-    Context context(test_params());
+    dbrg_params params = test_params();
+    params.threads = 1;
+    Context context(params);
+    params.threads = 2;
+    Context two_threads(params);
+    const ProgressSpan on_one(context, DBRG_STAGE_SORT), on_two(two_threads, DBRG_STAGE_SORT);
     ConditionedPoints points(context.memory);
     REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
     const uint32_t n = points.size();
     Array<uint32_t> one(context.memory), several(context.memory);
-    REQUIRE(hilbert_order(points.coordinates.data(), n, 1, one));
-    REQUIRE(hilbert_order(points.coordinates.data(), n, 2, several));
+    REQUIRE(hilbert_order(points.coordinates.data(), n, on_one, one) == DBRG_OK);
+    REQUIRE(hilbert_order(points.coordinates.data(), n, on_two, several) == DBRG_OK);
     CHECK(std::equal(one.begin(), one.end(), several.begin()));
     REQUIRE(renumber_spatially(points, context) == DBRG_OK);
-    CHECK(in_hilbert_order(points.coordinates.data(), n, 2));
+    bool ordered = false;
+    REQUIRE(in_hilbert_order(points.coordinates.data(), n, on_two, ordered) == DBRG_OK);
+    CHECK(ordered);
     // A descent exactly where the second slice begins, and one inside it, are both seen.
     for (uint32_t at : {n / 2, n / 2 + 1000}) {
         CAPTURE(at);
         std::vector<double> swapped(points.coordinates.begin(), points.coordinates.end());
         std::swap_ranges(swapped.begin() + 3 * size_t(at - 1), swapped.begin() + 3 * size_t(at), swapped.begin() + 3 * size_t(at));
-        CHECK_FALSE(in_hilbert_order(swapped.data(), n, 2));
-        CHECK_FALSE(in_hilbert_order(swapped.data(), n, 1));
+        for (const ProgressSpan& threads : {on_two, on_one}) {
+            REQUIRE(in_hilbert_order(swapped.data(), n, threads, ordered) == DBRG_OK);
+            CHECK_FALSE(ordered);
+        }
     }
 }
 
@@ -130,9 +140,12 @@ TEST_CASE("the insertion order is streamed on Hilbert-numbered points and equals
             if (numbered) REQUIRE(renumber_spatially(points, context) == DBRG_OK);
             const uint32_t n = points.size();
             // Lexicographic numbering is not along the curve; renumber_spatially's is.
-            CHECK(in_hilbert_order(points.coordinates.data(), n, 1) == (numbered == 1));
+            const ProgressSpan sort(context, DBRG_STAGE_SORT);
+            bool ordered = false;
+            REQUIRE(in_hilbert_order(points.coordinates.data(), n, sort, ordered) == DBRG_OK);
+            CHECK(ordered == (numbered == 1));
             Array<uint32_t> sorted(context.memory);
-            REQUIRE(brio_hilbert_order(points.coordinates.data(), n, context, sorted) == DBRG_OK);
+            REQUIRE(brio_hilbert_order(points.coordinates.data(), n, sort, sorted) == DBRG_OK);
             BrioOrder order(context.memory);
             REQUIRE(order.prepare(points.coordinates.data(), n, context) == DBRG_OK);
             CHECK(order.streamed() == (numbered == 1));

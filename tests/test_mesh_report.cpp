@@ -948,13 +948,12 @@ MeshData naively_welded(const MeshData& mesh) {
 
 } // namespace
 
-TEST_CASE("every mesh in ../shared/data matches the naive computation") {
-    const std::string dir = dbrg::test::shared_data_dir();
-    DIR* listing = dir.empty() ? nullptr : opendir(dir.c_str());
-    if (!listing) {
-        MESSAGE("skipped: no shared data folder at '" << dir << "' (set DBRG_DATA_DIR to point at one)");
-        return;
-    }
+TEST_CASE("every mesh in ../shared/data matches the naive computation" *
+          doctest::test_suite(dbrg::test::SHARED_DATA_SUITE)) {
+    const std::string dir = dbrg::test::shared_data_dir_or_skip();
+    if (dir.empty()) return;
+    DIR* listing = opendir(dir.c_str());
+    REQUIRE(listing != nullptr);
     std::vector<std::string> names;
     while (const dirent* entry = readdir(listing)) {
         if (format_from_path(entry->d_name)) names.push_back(entry->d_name);

@@ -1,9 +1,11 @@
 // Parallel parts: the slicing, the merge-path split and the parallel sort agree with their sequential
-// meaning for any number of parts, including more parts than items. Run under ThreadSanitizer in CI.
+// meaning for any number of parts, including more parts than items; the sort works in steps and stops
+// between two when asked. Run under ThreadSanitizer in CI.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
 #include <vector>
 
 #include "core/parallel.h"
@@ -84,10 +86,50 @@ TEST_CASE("parallel_sort gives std::sort's order for any number of parts") {
             CAPTURE(count);
             CAPTURE(parts);
             std::vector<Keyed> items = original, scratch(count);
-            parallel_sort(items.data(), count, scratch.data(), parts, by_key_then_index);
+            CHECK(parallel_sort(items.data(), count, scratch.data(), parts, by_key_then_index, [](size_t, size_t) { return true; }));
             bool same = true;
             for (size_t i = 0; i < count; ++i) same = same && items[i].key == expected[i].key && items[i].index == expected[i].index;
             CHECK(same);
+        }
+    }
+}
+
+TEST_CASE("parallel_sort works in steps, reports the work done between them, and stops when asked") {
+    // Several steps of runs and of each merge round, whatever the number of parts.
+    const size_t count = 3 * STEP_ITEMS + 12345;
+    const std::vector<Keyed> original = random_items(count, 1000, 5);
+    std::vector<Keyed> expected = original;
+    std::sort(expected.begin(), expected.end(), by_key_then_index);
+    for (uint32_t parts : {1u, 2u, 3u, 7u}) {
+        CAPTURE(parts);
+        REQUIRE(sort_needs_scratch(count, parts));
+        std::vector<Keyed> items = original, scratch(count);
+        std::vector<std::pair<size_t, size_t>> calls;  // (done, total)
+        const auto record = [&](size_t done, size_t total) {
+            calls.emplace_back(done, total);
+            return true;
+        };
+        REQUIRE(parallel_sort(items.data(), count, scratch.data(), parts, by_key_then_index, record));
+        bool same = true;
+        for (size_t i = 0; i < count; ++i) same = same && items[i].key == expected[i].key && items[i].index == expected[i].index;
+        CHECK(same);
+        // A call before every step: the runs and at least one merge round take four steps each.
+        CHECK(calls.size() >= 8);
+        bool in_order = true;
+        for (size_t i = 0; i < calls.size(); ++i) {
+            in_order = in_order && calls[i].second == calls[0].second && (i == 0 || calls[i].first > calls[i - 1].first);
+        }
+        CHECK(in_order);
+        CHECK(calls.front().first == 0);
+        CHECK(calls.back().first == calls.back().second);
+        // Stopped at the first call, one in the middle, the last: no call after that one, and false.
+        for (size_t stop_at : {size_t(0), calls.size() / 2, calls.size() - 1}) {
+            CAPTURE(stop_at);
+            items = original;
+            size_t seen = 0;
+            const auto stop = [&](size_t, size_t) { return seen++ != stop_at; };
+            CHECK_FALSE(parallel_sort(items.data(), count, scratch.data(), parts, by_key_then_index, stop));
+            CHECK(seen == stop_at + 1);
         }
     }
 }

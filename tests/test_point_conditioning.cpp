@@ -1,12 +1,16 @@
 // Tests of point conditioning: exact power-of-two rescaling, lexicographic order, duplicate merging,
-// degeneracy statuses with counts, and allocation failure.
+// degeneracy statuses with counts, allocation failure, and progress reported in steps that a cancel stops.
 #include <doctest/doctest.h>
 
 #include <float.h>
+#include <stdint.h>
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
+#include "core/parallel.h"
+#include "core/point_input.h"
 #include "delaunay/point_conditioning.h"
 #include "delaunay_test_support.h"
 #include "predicates/predicates.h"
@@ -35,6 +39,18 @@ void check_exact_and_sorted(const std::vector<double>& xyz, const ConditionedPoi
     CHECK(extent >= 0.5);
     CHECK(extent < 1.0);
 }
+
+// Records every progress report; cancels at report number `cancel_at` (counting from 0).
+struct ProgressLog {
+    std::vector<std::pair<dbrg_stage, double>> reports;
+    size_t cancel_at = SIZE_MAX;
+
+    static int record(void* user, dbrg_stage stage, double fraction) {
+        ProgressLog& log = *static_cast<ProgressLog*>(user);
+        log.reports.emplace_back(stage, fraction);
+        return log.reports.size() > log.cancel_at ? 1 : 0;
+    }
+};
 
 } // namespace
 
@@ -194,5 +210,47 @@ TEST_CASE("points closer than the predicates' grid merge onto the smallest coord
         CHECK(out.duplicates_merged == 1);
         const uint32_t expected = a_first ? 5 : 0;  // where near_b, the smaller one, is
         CHECK(std::count(out.input_index.begin(), out.input_index.end(), expected) == 1);
+    }
+}
+
+TEST_CASE("conditioning a large input reports its progress in steps, and a cancel between two steps stops it") {
+    // Each pass over the points takes three steps.
+    const size_t n = 3 * STEP_ITEMS;
+    const std::vector<double> xyz = random_cube(n, 41);
+    ProgressLog log;
+    {
+        Context context(test_params(nullptr, ProgressLog::record, &log));
+        ConditionedPoints out(context.memory);
+        REQUIRE(condition_points(xyz.data(), n, context, out) == DBRG_OK);
+        REQUIRE(out.size() == n);
+        bool sorted = true;
+        for (uint32_t v = 1; v < out.size(); ++v) sorted = sorted && compare_points(out.point(v - 1), out.point(v)) < 0;
+        CHECK(sorted);
+    }
+    // Within conditioning's share of DBRG_STAGE_VALIDATE, in order, from the first pass to the last.
+    REQUIRE(log.reports.size() >= 20);
+    bool in_share = true, in_order = true;
+    for (size_t i = 0; i < log.reports.size(); ++i) {
+        const double fraction = log.reports[i].second;
+        in_share = in_share && log.reports[i].first == DBRG_STAGE_VALIDATE && fraction >= VALIDATE_READ_SHARE &&
+                   fraction <= VALIDATE_CONDITION_END;
+        in_order = in_order && (i == 0 || fraction > log.reports[i - 1].second);
+    }
+    CHECK(in_share);
+    CHECK(in_order);
+    CHECK(log.reports.front().second == VALIDATE_READ_SHARE);
+    CHECK(log.reports.back().second == VALIDATE_CONDITION_END);
+    // Cancelled at the first report, one in the middle (while sorting) and the last one.
+    const size_t reports = log.reports.size();
+    for (size_t cancel_at : {size_t(0), reports / 2, reports - 1}) {
+        CAPTURE(cancel_at);
+        ProgressLog cancelling;
+        cancelling.cancel_at = cancel_at;
+        Context context(test_params(nullptr, ProgressLog::record, &cancelling));
+        ConditionedPoints out(context.memory);
+        CHECK(condition_points(xyz.data(), n, context, out) == DBRG_ERR_CANCELLED);
+        CHECK(cancelling.reports.size() == cancel_at + 1);
+        CHECK(out.size() == 0);
+        CHECK(context.memory.bytes_in_use() == 0);
     }
 }

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dbrg/dbrg.h"
@@ -263,12 +263,10 @@ TEST_CASE("the TetGen backend gives the same surface, or says it is not built in
 #endif
 }
 
-TEST_CASE("the closed models of the shared data come out closed, the bunny keeps its openings, all stay near their meshes") {
-    const std::string dir = test::shared_data_dir();
-    if (dir.empty() || !std::filesystem::is_directory(dir)) {
-        MESSAGE("skipped: no shared data folder at '" << dir << "' (set DBRG_DATA_DIR to point at one)");
-        return;
-    }
+TEST_CASE("the closed models of the shared data come out closed, the bunny keeps its openings, all stay near their meshes" *
+          doctest::test_suite(test::SHARED_DATA_SUITE)) {
+    const std::string dir = test::shared_data_dir_or_skip();
+    if (dir.empty()) return;
     // The folder is there, so every model must be read. The cow's mouth and the cheburashka's legs and neck come closer to themselves than the sample
     // spacing; growing bridges them there, and the small handles this makes are removed after hole filling.
     const struct {
@@ -388,4 +386,33 @@ TEST_CASE("a snapshot callback can cancel") {
     const dbrg_params params = snapshots.params(4);
     CHECK(test::reconstruct(xyz, &params).status == DBRG_ERR_CANCELLED);
     CHECK(snapshots.triangles.size() == 2);
+}
+
+TEST_CASE("validation, sorting and output report progress inside the stage, not only at its ends") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
+    struct Log {
+        std::vector<std::pair<dbrg_stage, double>> reports;
+        static int record(void* user, dbrg_stage stage, double fraction) {
+            static_cast<Log*>(user)->reports.emplace_back(stage, fraction);
+            return 0;
+        }
+    } log;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.progress = Log::record;
+    params.progress_user = &log;
+    REQUIRE(test::reconstruct(xyz, &params).status == DBRG_OK);
+    for (dbrg_stage stage : {DBRG_STAGE_VALIDATE, DBRG_STAGE_SORT, DBRG_STAGE_OUTPUT}) {
+        CAPTURE(stage);
+        CHECK(std::any_of(log.reports.begin(), log.reports.end(), [stage](const std::pair<dbrg_stage, double>& r) {
+            return r.first == stage && r.second > 0.0 && r.second < 1.0;
+        }));
+    }
+    // Stages in order, each one's fractions in order.
+    bool in_order = true;
+    for (size_t i = 1; i < log.reports.size(); ++i) {
+        const auto &a = log.reports[i - 1], &b = log.reports[i];
+        in_order = in_order && (b.first > a.first || (b.first == a.first && b.second >= a.second));
+    }
+    CHECK(in_order);
 }

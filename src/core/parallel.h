@@ -68,48 +68,88 @@ size_t merge_split(const T* a, size_t m, const T* b, size_t n, size_t k, const L
     return low;
 }
 
-// Sorts items[0 .. count) by `less` on `parts` threads: each sorts a slice, then rounds of pairwise merges,
-// each merge cut along its merge path so that every thread writes an equal share of the output. `less`
-// must be a strict total order on the items (no two equal), so the result is the one a sequential sort
-// gives. With more than one part, `scratch` holds `count` items (its content is overwritten).
+// The most items a pass over the points works through between two returns to the calling thread, where
+// progress is reported and a cancel seen: about a millisecond to a few tens of milliseconds of work. With
+// many threads a step grows so that each still gets MIN_POINTS_PER_THREAD items.
+constexpr size_t STEP_ITEMS = size_t(1) << 18;
+
+inline size_t step_items(uint32_t parts) {
+    return parts > STEP_ITEMS / MIN_POINTS_PER_THREAD ? size_t(parts) * MIN_POINTS_PER_THREAD : STEP_ITEMS;
+}
+
+// The length of the runs parallel_sort sorts before merging them: one step's share for each part.
+inline size_t sort_run_items(size_t count, uint32_t parts) {
+    const size_t step = std::min(count, step_items(parts));
+    return parts <= 1 ? step : (step + parts - 1) / parts;
+}
+
+// Whether parallel_sort needs its scratch array (more than one run).
+inline bool sort_needs_scratch(size_t count, uint32_t parts) { return count > sort_run_items(count, parts); }
+
+// Writes items [from, to) of one merge round's output: source holds sorted runs of `width` items, and the
+// round merges runs 2k and 2k + 1 into target. Each merge is cut along its merge path, so any range of the
+// output can be written on its own.
 template <class T, class Less>
-void parallel_sort(T* items, size_t count, T* scratch, uint32_t parts, const Less& less) {
-    if (parts <= 1 || count < 2) {
-        std::sort(items, items + count, less);
-        return;
+void merge_round_range(const T* source, T* target, size_t count, size_t width, size_t from, size_t to, const Less& less) {
+    for (size_t lo = from / (2 * width) * (2 * width); lo < to; lo += 2 * width) {
+        const size_t mid = std::min(lo + width, count), hi = std::min(mid + width, count);
+        const size_t first = std::max(lo, from) - lo, last = std::min(hi, to) - lo;  // of this pair's output
+        const T* a = source + lo;
+        const T* b = source + mid;
+        const size_t m = mid - lo, n = hi - mid;
+        const size_t i0 = merge_split(a, m, b, n, first, less), i1 = merge_split(a, m, b, n, last, less);
+        std::merge(a + i0, a + i1, b + (first - i0), b + (last - i1), target + lo + first, less);
     }
-    // Run r is [run_begin(r), run_begin(r + 1)); there are `runs` of them.
-    uint32_t runs = parts;
-    uint32_t run_step = 1;  // slices per run
-    auto run_begin = [&](uint32_t r) { return part_begin(count, parts, r * run_step > parts ? parts : r * run_step); };
-    run_parts(parts, [&](uint32_t part) {
-        std::sort(items + part_begin(count, parts, part), items + part_begin(count, parts, part + 1), less);
-    });
+}
+
+// Sorts items[0 .. count) by `less` on `parts` threads, as a merge sort in steps of about
+// step_items(parts) items: runs sorted by std::sort, one per part at a time, then rounds of pairwise merges,
+// each step's output shared equally among the parts. Before each step, on the calling thread, calls
+// between(done, total) with the work done so far, and stops when it returns false: parallel_sort then
+// returns false and the items are left in some order. `less` must be a strict total order on the items (no
+// two equal), so the result is the one a sequential sort gives. `scratch` holds `count` items when
+// sort_needs_scratch(count, parts) (its content is overwritten).
+template <class T, class Less, class Between>
+bool parallel_sort(T* items, size_t count, T* scratch, uint32_t parts, const Less& less, const Between& between) {
+    if (count < 2) return true;
+    parts = parts < 1 ? 1 : parts;
+    const size_t run = sort_run_items(count, parts), runs = (count + run - 1) / run, step = run * parts;
+    // Work in item moves: a run's sort costs about log2(run) per item, a merge round or the copy back one.
+    size_t run_cost = 1, rounds = 0;
+    while (run_cost < 64 && run >> run_cost) ++run_cost;
+    for (size_t width = run; width < count; width *= 2) ++rounds;
+    const size_t total = count * (run_cost + rounds + rounds % 2);
+    size_t done = 0;
+    for (size_t first = 0; first < runs; first += parts) {
+        if (!between(done, total)) return false;
+        run_parts(parts, [&](uint32_t part) {
+            const size_t begin = (first + part) * run;
+            if (first + part < runs) std::sort(items + begin, items + std::min(count, begin + run), less);
+        });
+        done += (std::min(count, (first + parts) * run) - first * run) * run_cost;
+    }
     T* source = items;
     T* target = scratch;
-    while (runs > 1) {
-        // Output slice `part` of the whole array: merge the pieces of each pair of runs that fall inside it.
-        run_parts(parts, [&](uint32_t part) {
-            const size_t out_begin = part_begin(count, parts, part), out_end = part_begin(count, parts, part + 1);
-            for (uint32_t pair = 0; 2 * pair < runs; ++pair) {
-                const size_t lo = run_begin(2 * pair), mid = run_begin(2 * pair + 1 < runs ? 2 * pair + 1 : runs);
-                const size_t hi = run_begin(2 * pair + 2 < runs ? 2 * pair + 2 : runs);
-                const size_t from = std::max(lo, out_begin), to = std::min(hi, out_end);
-                if (from >= to) continue;
-                const T* a = source + lo;
-                const T* b = source + mid;
-                const size_t m = mid - lo, n = hi - mid;
-                const size_t i0 = merge_split(a, m, b, n, from - lo, less), i1 = merge_split(a, m, b, n, to - lo, less);
-                std::merge(a + i0, a + i1, b + (from - lo - i0), b + (to - lo - i1), target + from, less);
-            }
-        });
-        runs = (runs + 1) / 2;
-        run_step *= 2;
+    for (size_t width = run; width < count; width *= 2) {
+        for (size_t begin = 0; begin < count; begin += step) {
+            if (!between(done, total)) return false;
+            const size_t end = std::min(count, begin + step);
+            for_each_slice(end - begin, parts, [&](size_t from, size_t to) {
+                merge_round_range(source, target, count, width, begin + from, begin + to, less);
+            });
+            done += end - begin;
+        }
         std::swap(source, target);
     }
-    if (source != items) {
-        for_each_slice(count, parts, [&](size_t begin, size_t end) { std::copy(source + begin, source + end, items + begin); });
+    for (size_t begin = 0; source != items && begin < count; begin += step) {
+        if (!between(done, total)) return false;
+        const size_t end = std::min(count, begin + step);
+        for_each_slice(end - begin, parts, [&](size_t from, size_t to) {
+            std::copy(source + begin + from, source + begin + to, items + begin + from);
+        });
+        done += end - begin;
     }
+    return between(total, total);
 }
 
 } // namespace dbrg

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/c_enum.h"
+#include "core/progress_span.h"
 #include "core/status.h"
 
 namespace dbrg {
@@ -12,8 +13,10 @@ namespace {
 
 template <class Scalar>
 dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride, Context& context, Array<double>& xyz) {
+    const ProgressSpan progress(context, DBRG_STAGE_VALIDATE, 0.0, VALIDATE_READ_SHARE);
     double* out = xyz.data();
     for (size_t i = 0; i < count; ++i) {
+        DBRG_PROPAGATE(progress.report_at(i, count));
         Scalar p[3];
         memcpy(p, bytes + i * stride, sizeof p);  // the caller's stride need not keep scalars aligned
         for (int k = 0; k < 3; ++k) {
@@ -24,7 +27,7 @@ dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride,
             out[3 * i + k] = static_cast<double>(p[k]);
         }
     }
-    return DBRG_OK;
+    return progress.report(count, count);
 }
 
 } // namespace

@@ -6,6 +6,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "core/progress_span.h"
 #include "delaunay/tetrahedralization.h"
 
 namespace dbrg {
@@ -13,7 +14,8 @@ namespace dbrg {
 // Writes the finite tetrahedra of `delaunay` in the order of their canonical corners (canonical_corners),
 // each with its corners in that order: 4 corners per tetrahedron into `tets` as input_index[vertex], and
 // into `adjacency` the number of the tetrahedron across from each corner, DBRG_NO_NEIGHBOR on the hull.
-dbrg_status write_canonical_tetrahedra(const Tetrahedralization& delaunay, const uint32_t* input_index, Context& context,
-                                       Array<uint32_t>& tets, Array<uint32_t>& adjacency);
+// Reports its passes within `progress`; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
+dbrg_status write_canonical_tetrahedra(const Tetrahedralization& delaunay, const uint32_t* input_index,
+                                       const ProgressSpan& progress, Array<uint32_t>& tets, Array<uint32_t>& adjacency);
 
 } // namespace dbrg

@@ -7,6 +7,8 @@
 #include <algorithm>
 
 #include "core/parallel.h"
+#include "core/point_input.h"
+#include "core/progress_span.h"
 #include "core/status.h"
 #include "delaunay/affine_checks.h"
 #include "delaunay/spatial_sort.h"
@@ -26,17 +28,21 @@ bool subtraction_is_exact(double a, double b) {
     return a_round + b_round == 0.0;
 }
 
-// The translation for one axis: the minimum rounded down to a multiple of 2^exponent (so that it has
-// few significant bits), kept only if it is exact for every coordinate on the axis.
-double exact_origin(const double* xyz, size_t count, int axis, double minimum, int exponent) {
+// The translation for one axis into `origin`: the minimum rounded down to a multiple of 2^exponent (so that
+// it has few significant bits), kept only if it is exact for every coordinate on the axis, 0 otherwise.
+dbrg_status exact_origin(const double* xyz, size_t count, int axis, double minimum, int exponent,
+                         const ProgressSpan& progress, double& origin) {
+    origin = 0.0;
     const double units = floor(ldexp(minimum, -exponent));
-    if (!isfinite(units)) return 0.0;
-    const double origin = ldexp(units, exponent);
-    if (!isfinite(origin) || origin == 0.0) return 0.0;
+    if (!isfinite(units)) return DBRG_OK;
+    const double candidate = ldexp(units, exponent);
+    if (!isfinite(candidate) || candidate == 0.0) return DBRG_OK;
     for (size_t i = 0; i < count; ++i) {
-        if (!subtraction_is_exact(xyz[3 * i + axis], origin)) return 0.0;
+        DBRG_PROPAGATE(progress.report_at(i, count));
+        if (!subtraction_is_exact(xyz[3 * i + axis], candidate)) return DBRG_OK;
     }
-    return origin;
+    origin = candidate;
+    return DBRG_OK;
 }
 
 // The exact predicates need every coordinate to be a multiple of 2^-200 (so no product of differences
@@ -57,20 +63,32 @@ bool same_point(const IndexedPoint& a, const IndexedPoint& b) {
     return a.p[0] == b.p[0] && a.p[1] == b.p[1] && a.p[2] == b.p[2];
 }
 
+// Points between two progress reports in the degeneracy checks: on collinear or coplanar points every
+// predicate needs exact arithmetic, about a microsecond.
+constexpr uint32_t RANK_STEP = 1u << 14;
+
 // Finds the first point after the lexicographically smallest two that makes them non-collinear, and
-// then one that is not coplanar with the three. Returns the number of affinely independent points
+// then one that is not coplanar with the three. Sets `rank` to the number of affinely independent points
 // found (2, 3 or 4).
-int affine_rank(const ConditionedPoints& points, PredicateCounters& counters) {
+dbrg_status affine_rank(const ConditionedPoints& points, const ProgressSpan& progress, int& rank) {
+    PredicateCounters counters;
     const uint32_t n = points.size();
     const double* a = points.point(0);
     const double* b = points.point(n - 1);  // the two lexicographic extremes are distinct
+    // Both searches may run through every point: each has half of the span.
     uint32_t c = 1;
-    while (c + 1 < n && points_collinear(a, b, points.point(c), counters)) ++c;
-    if (c + 1 >= n) return 2;
-    for (uint32_t d = 1; d + 1 < n; ++d) {
-        if (orient3d(a, b, points.point(c), points.point(d), counters) != 0) return 4;
+    for (; c + 1 < n && points_collinear(a, b, points.point(c), counters); ++c) {
+        if (c % RANK_STEP == 0) DBRG_PROPAGATE(progress.report(c, 2 * size_t(n)));
     }
-    return 3;
+    rank = 2;
+    if (c + 1 >= n) return DBRG_OK;
+    rank = 4;
+    for (uint32_t d = 1; d + 1 < n; ++d) {
+        if (d % RANK_STEP == 0) DBRG_PROPAGATE(progress.report(n + size_t(d), 2 * size_t(n)));
+        if (orient3d(a, b, points.point(c), points.point(d), counters) != 0) return DBRG_OK;
+    }
+    rank = 3;
+    return DBRG_OK;
 }
 
 } // namespace
@@ -92,15 +110,10 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
                             count);
     }
 
+    // Each pass has a share of the progress roughly as its time on a large input.
+    const ProgressSpan progress(context, DBRG_STAGE_VALIDATE, VALIDATE_READ_SHARE, VALIDATE_CONDITION_END);
     double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = xyz[k];
-    for (size_t i = 1; i < count; ++i) {
-        for (int k = 0; k < 3; ++k) {
-            const double v = xyz[3 * i + k];
-            lo[k] = v < lo[k] ? v : lo[k];
-            hi[k] = v > hi[k] ? v : hi[k];
-        }
-    }
+    DBRG_PROPAGATE(bounding_box(xyz, count, progress.part(0.0, 0.05), lo, hi));
     // The extent may overflow to infinity (coordinates near +-DBL_MAX); measure half of it then.
     double extent = 0.0;
     bool halved = false;
@@ -118,7 +131,10 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     frexp(extent, &exponent);  // extent = f * 2^exponent with f in [0.5, 1)
     if (halved) ++exponent;
     out.scale_exponent = -exponent;
-    for (int k = 0; k < 3; ++k) out.origin[k] = exact_origin(xyz, count, k, lo[k], exponent);
+    for (int k = 0; k < 3; ++k) {
+        DBRG_PROPAGATE(exact_origin(xyz, count, k, lo[k], exponent, progress.part(0.05 + 0.02 * k, 0.07 + 0.02 * k),
+                                    out.origin[k]));
+    }
 
     // The transformed points with their input index, sorted by coordinates, then by the caller's
     // coordinates, then by index: the first of a group of equal points is the one with the smallest caller
@@ -127,15 +143,18 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     Array<IndexedPoint> sorted(context.memory);
     Array<IndexedPoint> scratch(context.memory);
-    if (!sorted.resize(count) || (parts > 1 && !scratch.resize(count))) return context.fail_out_of_memory();
-    for_each_slice(count, parts, [&](size_t begin, size_t end) {
+    if (!sorted.resize(count) || (sort_needs_scratch(count, parts) && !scratch.resize(count))) {
+        return context.fail_out_of_memory();
+    }
+    DBRG_PROPAGATE(progress.part(0.11, 0.2).for_each_step(count, parts, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             IndexedPoint& q = sorted[i];
             for (int k = 0; k < 3; ++k) q.p[k] = snap_to_predicate_grid(ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent));
             q.index = static_cast<uint32_t>(i);
         }
-    });
-    parallel_sort(sorted.data(), count, scratch.data(), parts, [xyz](const IndexedPoint& a, const IndexedPoint& b) {
+    }));
+    DBRG_PROPAGATE(progress.part(0.2, 0.85).sort(sorted.data(), count, scratch.data(), parts,
+                                                 [xyz](const IndexedPoint& a, const IndexedPoint& b) {
         for (int k = 0; k < 3; ++k) {
             if (a.p[k] != b.p[k]) return a.p[k] < b.p[k];
         }
@@ -144,15 +163,20 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
             if (u != v) return u < v;
         }
         return a.index < b.index;
-    });
+    }));
     scratch.release();
 
+    const ProgressSpan counting = progress.part(0.85, 0.88), copying = progress.part(0.88, 0.95);
     size_t distinct = 1;
-    for (size_t i = 1; i < count; ++i) distinct += !same_point(sorted[i], sorted[i - 1]);
+    for (size_t i = 1; i < count; ++i) {
+        DBRG_PROPAGATE(counting.report_at(i, count));
+        distinct += !same_point(sorted[i], sorted[i - 1]);
+    }
     if (!out.coordinates.reserve(3 * distinct) || !out.input_index.reserve(distinct)) {
         return context.fail_out_of_memory();
     }
     for (size_t i = 0; i < count; ++i) {
+        DBRG_PROPAGATE(copying.report_at(i, count));
         if (i > 0 && same_point(sorted[i], sorted[i - 1])) continue;
         out.coordinates.push_back(sorted[i].p[0]);
         out.coordinates.push_back(sorted[i].p[1]);
@@ -166,8 +190,8 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
         return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given but only %zu distinct; at least 4 are needed",
                             count, distinct);
     }
-    PredicateCounters counters;
-    const int rank = affine_rank(out, counters);
+    int rank = 0;
+    DBRG_PROPAGATE(affine_rank(out, progress.part(0.95, 1.0), rank));
     if (rank == 2) {
         return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %zu distinct points (of %zu given) are collinear",
                             distinct, count);
@@ -176,7 +200,7 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
         return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %zu distinct points (of %zu given) are coplanar",
                             distinct, count);
     }
-    return DBRG_OK;
+    return progress.report(1, 1);
 }
 
 } // namespace
@@ -191,20 +215,20 @@ dbrg_status condition_points(const double* xyz, size_t count, Context& context, 
 }
 
 dbrg_status renumber_spatially(ConditionedPoints& points, Context& context) {
+    const ProgressSpan progress(context, DBRG_STAGE_VALIDATE, VALIDATE_CONDITION_END, 1.0);
     const uint32_t n = points.size();
     Array<uint32_t> order(context.memory);
     Array<double> coordinates(context.memory);
     Array<uint32_t> input_index(context.memory);
-    if (!hilbert_order(points.coordinates.data(), n, context.params.threads, order) ||
-        !coordinates.resize(3 * size_t(n)) || !input_index.resize(n)) {
-        return context.fail_out_of_memory();
-    }
-    for_each_slice(n, part_count(context.params.threads, n, MIN_POINTS_PER_THREAD), [&](size_t begin, size_t end) {
+    DBRG_PROPAGATE(hilbert_order(points.coordinates.data(), n, progress.part(0.0, 0.9), order));
+    if (!coordinates.resize(3 * size_t(n)) || !input_index.resize(n)) return context.fail_out_of_memory();
+    const uint32_t parts = part_count(context.params.threads, n, MIN_POINTS_PER_THREAD);
+    DBRG_PROPAGATE(progress.part(0.9, 1.0).for_each_step(n, parts, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             for (int k = 0; k < 3; ++k) coordinates[3 * i + k] = points.coordinates[3 * size_t(order[i]) + k];
             input_index[i] = points.input_index[order[i]];
         }
-    });
+    }));
     points.coordinates.swap(coordinates);
     points.input_index.swap(input_index);
     return DBRG_OK;

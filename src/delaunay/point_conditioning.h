@@ -33,16 +33,22 @@ struct ConditionedPoints {
     const double* point(uint32_t v) const { return coordinates.data() + 3 * static_cast<size_t>(v); }
 };
 
+// Where conditioning's share of DBRG_STAGE_VALIDATE's progress ends (it begins after reading the points,
+// at VALIDATE_READ_SHARE) and the renumbering's begins.
+constexpr double VALIDATE_CONDITION_END = 0.8;
+
 // Conditions `count` finite points given as x, y, z triples. Merges points that are equal after the
 // transform. Fails with DBRG_ERR_TOO_FEW_POINTS (fewer than 4 distinct points) or DBRG_ERR_DEGENERATE_INPUT
-// (all collinear, all coplanar), each with a message saying how many distinct points there were; `out`
-// is then left empty.
+// (all collinear, all coplanar), each with a message saying how many distinct points there were, or
+// DBRG_ERR_CANCELLED; `out` is then left empty. Reports DBRG_STAGE_VALIDATE progress from
+// VALIDATE_READ_SHARE to VALIDATE_CONDITION_END.
 dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out);
 
 // Renumbers conditioned points along a Hilbert curve, so that points close in space are close in memory
 // for the tetrahedralization and region growing that follow. The numbering stays a function of the
 // coordinates alone (the curve over the bounding box; ties by lexicographic order), so results still do
-// not depend on the caller's order. Returns DBRG_ERR_OUT_OF_MEMORY (with the message set) on failure.
+// not depend on the caller's order. Reports DBRG_STAGE_VALIDATE progress from VALIDATE_CONDITION_END to 1.
+// Returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED (with the message set).
 dbrg_status renumber_spatially(ConditionedPoints& points, Context& context);
 
 } // namespace dbrg

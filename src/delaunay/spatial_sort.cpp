@@ -5,6 +5,7 @@
 #include "delaunay/spatial_sort.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "core/parallel.h"
 #include "core/splitmix64.h"
@@ -36,21 +37,16 @@ struct KeyedIndex {
     uint32_t index;
 };
 
-// Maps points to the cells of the 2^HILBERT_BITS grid over their bounding box.
+// Maps points to the cells of the 2^HILBERT_BITS grid over a box.
 class HilbertGrid {
 public:
-    HilbertGrid(const double* points, uint32_t count) {
-        double hi[3];
-        for (int k = 0; k < 3; ++k) lo_[k] = hi[k] = points[k];
-        for (uint32_t i = 1; i < count; ++i) {
-            for (int k = 0; k < 3; ++k) {
-                const double v = points[3 * size_t(i) + k];
-                lo_[k] = v < lo_[k] ? v : lo_[k];
-                hi[k] = v > hi[k] ? v : hi[k];
-            }
-        }
+    HilbertGrid() = default;
+    HilbertGrid(const double lo[3], const double hi[3]) {
         double extent = 0;
-        for (int k = 0; k < 3; ++k) extent = hi[k] - lo_[k] > extent ? hi[k] - lo_[k] : extent;
+        for (int k = 0; k < 3; ++k) {
+            lo_[k] = lo[k];
+            extent = hi[k] - lo[k] > extent ? hi[k] - lo[k] : extent;
+        }
         scale_ = extent > 0 ? CELLS / extent : 0.0;
     }
 
@@ -65,9 +61,17 @@ public:
 
 private:
     static constexpr uint32_t CELLS = 1u << HILBERT_BITS;
-    double lo_[3];
-    double scale_;
+    double lo_[3] = {0, 0, 0};
+    double scale_ = 0;
 };
+
+// The grid over the points' bounding box; its share of the progress is the first 10% of `progress`.
+dbrg_status grid_over(const double* points, uint32_t count, const ProgressSpan& progress, HilbertGrid& grid) {
+    double lo[3], hi[3];
+    DBRG_PROPAGATE(bounding_box(points, count, progress.part(0.0, 0.1), lo, hi));
+    grid = HilbertGrid(lo, hi);
+    return DBRG_OK;
+}
 
 // Sorted by key; ties (points in one grid cell) go by index, which keeps the order a function of the points.
 bool by_key_then_index(const KeyedIndex& a, const KeyedIndex& b) {
@@ -75,6 +79,19 @@ bool by_key_then_index(const KeyedIndex& a, const KeyedIndex& b) {
 }
 
 } // namespace
+
+dbrg_status bounding_box(const double* points, size_t count, const ProgressSpan& progress, double lo[3], double hi[3]) {
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = count > 0 ? points[k] : 0.0;
+    for (size_t i = 0; i < count; ++i) {
+        DBRG_PROPAGATE(progress.report_at(i, count));
+        for (int k = 0; k < 3; ++k) {
+            const double v = points[3 * i + k];
+            lo[k] = v < lo[k] ? v : lo[k];
+            hi[k] = v > hi[k] ? v : hi[k];
+        }
+    }
+    return progress.report(count, count);
+}
 
 uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
     // Skilling's method: turn the axes into the "transposed" Hilbert index level by level from the
@@ -102,25 +119,30 @@ uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
     return spread_bits(a[0]) << 2 | spread_bits(a[1]) << 1 | spread_bits(a[2]);
 }
 
-dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& context, Array<uint32_t>& order) {
-    DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.0));
-    if (!order.resize(count)) return context.fail_out_of_memory();
-    if (count == 0) return DBRG_OK;
-
-    const HilbertGrid grid(points, count);
+dbrg_status brio_hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order) {
+    Context& context = progress.context();
+    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
+    Array<KeyedIndex> keyed(context.memory);
+    Array<KeyedIndex> scratch(context.memory);
+    if (!order.resize(count) || !keyed.resize(count) || (sort_needs_scratch(count, parts) && !scratch.resize(count))) {
+        return context.fail_out_of_memory();
+    }
+    if (count == 0) return progress.report(1, 1);
+    HilbertGrid grid;
+    DBRG_PROPAGATE(grid_over(points, count, progress, grid));
 
     // One sort by (round, Hilbert index) orders everything.
     const int rounds = BrioOrder::round_count(count);
-    Array<KeyedIndex> keyed(context.memory);
-    if (!keyed.resize(count)) return context.fail_out_of_memory();
-    for (uint32_t i = 0; i < count; ++i) {
-        const uint64_t round = uint64_t(BrioOrder::round_of(i, rounds));
-        keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | grid.key(points + 3 * size_t(i)), i};
-    }
-    DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.5));
-    std::sort(keyed.begin(), keyed.end(), by_key_then_index);
-    for (uint32_t i = 0; i < count; ++i) order[i] = keyed[i].index;
-    return context.report(DBRG_STAGE_SORT, 1.0);
+    DBRG_PROPAGATE(progress.part(0.1, 0.3).for_each_step(count, parts, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const uint64_t round = uint64_t(BrioOrder::round_of(static_cast<uint32_t>(i), rounds));
+            keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | grid.key(points + 3 * i), static_cast<uint32_t>(i)};
+        }
+    }));
+    DBRG_PROPAGATE(progress.part(0.3, 0.9).sort(keyed.data(), count, scratch.data(), parts, by_key_then_index));
+    return progress.part(0.9, 1.0).for_each_step(count, parts, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) order[i] = keyed[i].index;
+    });
 }
 
 int BrioOrder::round_count(uint32_t count) {
@@ -148,14 +170,16 @@ dbrg_status BrioOrder::prepare(const double* points, uint32_t count, Context& co
     position_ = 0;
     round_ = 0;
     rounds_ = round_count(count);
-    streamed_ = in_hilbert_order(points, count, context.params.threads);
-    if (!streamed_) {
-        last_round_begin_ = 0;
-        for (uint32_t i = 0; i < count; ++i) last_round_begin_ += brio_round(i) != rounds_ - 1;
-        return brio_hilbert_order(points, count, context, order_);
-    }
-    DBRG_PROPAGATE(context.report(DBRG_STAGE_SORT, 0.0));
-    return context.report(DBRG_STAGE_SORT, 1.0);
+    const ProgressSpan progress(context, DBRG_STAGE_SORT);
+    DBRG_PROPAGATE(progress.report(0, 1));
+    DBRG_PROPAGATE(in_hilbert_order(points, count, progress.part(0.0, 0.5), streamed_));
+    if (streamed_) return progress.report(1, 1);
+    DBRG_PROPAGATE(brio_hilbert_order(points, count, progress.part(0.5, 1.0), order_));
+    // The order lists the rounds one after the other.
+    last_round_begin_ = static_cast<uint32_t>(
+        std::partition_point(order_.begin(), order_.end(), [&](uint32_t v) { return brio_round(v) != rounds_ - 1; }) -
+        order_.begin());
+    return DBRG_OK;
 }
 
 BrioOrder::Slice BrioOrder::last_round_slice(uint32_t part, uint32_t parts) const {
@@ -169,41 +193,48 @@ BrioOrder::Slice BrioOrder::last_round_slice(uint32_t part, uint32_t parts) cons
     return slice;
 }
 
-bool in_hilbert_order(const double* points, uint32_t count, uint32_t threads) {
-    if (count == 0) return true;
-    const HilbertGrid grid(points, count);
-    const uint32_t parts = part_count(threads, count, MIN_POINTS_PER_THREAD);
-    bool ordered[MAX_THREADS];
-    run_parts(parts, [&](uint32_t part) {
-        // Each slice also compares its first point with the one before it.
-        const size_t begin = part_begin(count, parts, part), end = part_begin(count, parts, part + 1);
+dbrg_status in_hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, bool& ordered) {
+    ordered = true;
+    if (count == 0) return progress.report(1, 1);
+    HilbertGrid grid;
+    DBRG_PROPAGATE(grid_over(points, count, progress, grid));
+    // Each slice also compares its first point with the one before it. A descent is written to the shared
+    // flag once, not per point.
+    std::atomic<bool> descent(false);
+    const uint32_t parts = part_count(progress.context().params.threads, count, MIN_POINTS_PER_THREAD);
+    DBRG_PROPAGATE(progress.part(0.1, 1.0).for_each_step(count, parts, [&](size_t begin, size_t end) {
+        if (descent.load(std::memory_order_relaxed)) return;
         uint64_t previous = begin == 0 ? 0 : grid.key(points + 3 * (begin - 1));
-        bool in_order = true;  // written to the shared array once, not per point
+        bool in_order = true;
         for (size_t i = begin; i < end && in_order; ++i) {
             const uint64_t key = grid.key(points + 3 * i);
             in_order = key >= previous;
             previous = key;
         }
-        ordered[part] = in_order;
-    });
-    return std::all_of(ordered, ordered + parts, [](bool b) { return b; });
+        if (!in_order) descent.store(true, std::memory_order_relaxed);
+    }));
+    ordered = !descent.load(std::memory_order_relaxed);
+    return DBRG_OK;
 }
 
-bool hilbert_order(const double* points, uint32_t count, uint32_t threads, Array<uint32_t>& order) {
-    const uint32_t parts = part_count(threads, count, MIN_POINTS_PER_THREAD);
-    Array<KeyedIndex> keyed(order.memory());
-    Array<KeyedIndex> scratch(order.memory());
-    if (!order.resize(count) || !keyed.resize(count) || (parts > 1 && !scratch.resize(count))) return false;
-    if (count == 0) return true;
-    const HilbertGrid grid(points, count);
-    for_each_slice(count, parts, [&](size_t begin, size_t end) {
+dbrg_status hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order) {
+    Context& context = progress.context();
+    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
+    Array<KeyedIndex> keyed(context.memory);
+    Array<KeyedIndex> scratch(context.memory);
+    if (!order.resize(count) || !keyed.resize(count) || (sort_needs_scratch(count, parts) && !scratch.resize(count))) {
+        return context.fail_out_of_memory();
+    }
+    if (count == 0) return progress.report(1, 1);
+    HilbertGrid grid;
+    DBRG_PROPAGATE(grid_over(points, count, progress, grid));
+    DBRG_PROPAGATE(progress.part(0.1, 0.3).for_each_step(count, parts, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) keyed[i] = KeyedIndex{grid.key(points + 3 * i), static_cast<uint32_t>(i)};
-    });
-    parallel_sort(keyed.data(), count, scratch.data(), parts, by_key_then_index);
-    for_each_slice(count, parts, [&](size_t begin, size_t end) {
+    }));
+    DBRG_PROPAGATE(progress.part(0.3, 0.9).sort(keyed.data(), count, scratch.data(), parts, by_key_then_index));
+    return progress.part(0.9, 1.0).for_each_step(count, parts, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) order[i] = keyed[i].index;
     });
-    return true;
 }
 
 } // namespace dbrg

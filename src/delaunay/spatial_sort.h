@@ -8,6 +8,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "core/progress_span.h"
 
 namespace dbrg {
 
@@ -18,17 +19,22 @@ constexpr int HILBERT_BITS = 19;
 // 2^bits cube: consecutive positions are face-adjacent cells. bits is in 1..21.
 uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits);
 
+// The bounding box of `count` points given as x, y, z triples (all zero when there are none). Reports to
+// `progress`; returns DBRG_OK or DBRG_ERR_CANCELLED.
+dbrg_status bounding_box(const double* points, size_t count, const ProgressSpan& progress, double lo[3], double hi[3]);
+
 // Fills `order` with a permutation of 0 .. count - 1: rounds of geometrically growing size drawn by a
 // pseudo-random generator seeded with each point's index (so the order depends on the point array and
-// nothing else), each round sorted along a Hilbert curve over the points' bounding box. Reports
-// DBRG_STAGE_SORT progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
-dbrg_status brio_hilbert_order(const double* points, uint32_t count, Context& context, Array<uint32_t>& order);
+// nothing else), each round sorted along a Hilbert curve over the points' bounding box, using up to
+// params.threads threads (the order is the same for any number). Reports to `progress`; returns DBRG_OK,
+// DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
+dbrg_status brio_hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order);
 
 // The insertion order of brio_hilbert_order, produced one point at a time. When the points are already
 // numbered along the Hilbert curve over their bounding box (as renumber_spatially leaves them), each round
 // in Hilbert order is that round's points in index order, and the order is streamed without any memory
 // and without sorting; otherwise it is computed by brio_hilbert_order and read from its array (4 bytes
-// per point, 20 while sorting). Either way the sequence is the same.
+// per point, 36 while sorting). Either way the sequence is the same.
 class BrioOrder {
 public:
     explicit BrioOrder(Memory& memory) : order_(memory) {}
@@ -113,13 +119,14 @@ private:
     int round_ = 0;
 };
 
-// Whether the points are numbered along the Hilbert curve over their bounding box: their curve positions
-// (as hilbert_order computes them) never decrease. Uses up to `threads` threads (0: all).
-bool in_hilbert_order(const double* points, uint32_t count, uint32_t threads);
+// Sets `ordered` to whether the points are numbered along the Hilbert curve over their bounding box: their
+// curve positions (as hilbert_order computes them) never decrease. Uses up to params.threads threads.
+// Reports to `progress`; returns DBRG_OK or DBRG_ERR_CANCELLED.
+dbrg_status in_hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, bool& ordered);
 
 // Fills `order` with the permutation of 0 .. count - 1 along a Hilbert curve over the points' bounding box,
-// ties by index, using up to `threads` threads (0: all; the order is the same for any number). Returns
-// false on allocation failure.
-bool hilbert_order(const double* points, uint32_t count, uint32_t threads, Array<uint32_t>& order);
+// ties by index, using up to params.threads threads (the order is the same for any number). Reports to
+// `progress`; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
+dbrg_status hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order);
 
 } // namespace dbrg
