@@ -7,8 +7,8 @@
 
 #include "core/array.h"
 #include "core/context.h"
-#include "core/point_input.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_input.h"
+#include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "fuzz_check.h"
 #include "fuzz_input.h"
@@ -60,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Context context(params);
     Array<double> xyz(context.memory);
     // Statuses of rejected input are fuzz_reconstruct's business; here only accepted sets matter.
-    if (read_points(&set.points(), context, xyz) != DBRG_OK) return 0;
+    if (copy_caller_points(&set.points(), context, xyz) != DBRG_OK) return 0;
     ConditionedPoints conditioned(context.memory);
     const dbrg_status status = condition_points(xyz.data(), set.count(), context, conditioned);
     if (status != DBRG_OK) {

@@ -6,8 +6,8 @@
 
 #include "core/c_enum.h"
 #include "core/params.h"
-#include "core/point_input.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_input.h"
+#include "points/point_conditioning.h"
 #include "pipeline.h"
 
 using namespace dbrg;
@@ -176,7 +176,7 @@ DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_
     params.allocator = allocator;
     Context context(params);
     Array<double> xyz(context.memory);
-    dbrg_status status = read_points(points, context, xyz);
+    dbrg_status status = copy_caller_points(points, context, xyz);
     if (status == DBRG_OK) {
         ConditionedPoints conditioned(context.memory);
         status = condition_points(xyz.data(), points->count, context, conditioned);

@@ -4,7 +4,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "grow/region_growing.h"
 #include "surface/surface.h"
 

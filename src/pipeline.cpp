@@ -2,12 +2,12 @@
 // holes — and hands the results over in the caller's point indexing.
 #include "pipeline.h"
 
-#include "core/point_input.h"
+#include "points/point_input.h"
 #include "core/progress_span.h"
 #include "core/status.h"
 #include "delaunay/backend.h"
 #include "delaunay/canonical_order.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
 #include "growth_snapshots.h"
@@ -23,7 +23,7 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
     const double start = seconds_now();
     DBRG_PROPAGATE(context.report(DBRG_STAGE_VALIDATE, 0.0));
     Array<double> xyz(context.memory);
-    DBRG_PROPAGATE(read_points(points, context, xyz));
+    DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
     DBRG_PROPAGATE(condition_points(xyz.data(), points->count, context, conditioned));
     xyz.release();
     DBRG_PROPAGATE(renumber_spatially(conditioned, context));

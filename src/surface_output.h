@@ -6,7 +6,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "surface/surface.h"
 
 namespace dbrg {

@@ -232,6 +232,7 @@ TEST_CASE("point counts beyond the limits fail before anything is allocated or r
         {"one more than DBRG_MAX_POINTS", DBRG_MAX_POINTS + 1, 3 * sizeof(double)},
         {"SIZE_MAX points", std::numeric_limits<size_t>::max(), 3 * sizeof(double)},
         {"count * stride overflows", 2, std::numeric_limits<size_t>::max() / 2 + 1},
+        {"one point at a stride past the address space", 1, std::numeric_limits<size_t>::max() - 8},
         {"count * stride overflows at the limit", DBRG_MAX_POINTS, std::numeric_limits<size_t>::max() / 1024},
     };
     static_assert(DBRG_MAX_POINTS == 0x7fffffffu, "indices are 32-bit with UINT32_MAX reserved");

@@ -243,7 +243,7 @@ class Messages(Folder):
             vertex_lines = [(number, line.split()[-3:]) for number, line in enumerate(lines, 1)
                             if line.startswith("v ") or (name.endswith(".xyz") and not line.startswith("#"))]
             expected = next(
-                f"point {point} has a {'NaN' if math.isnan(float(value)) else 'infinite'} {'xyz'[axis]} coordinate"
+                f"point {point} has {'a NaN' if math.isnan(float(value)) else 'an infinite'} {'xyz'[axis]} coordinate"
                 f" ({path} line {number})"
                 for point, (number, values) in enumerate(vertex_lines)
                 for axis, value in enumerate(values) if not math.isfinite(float(value)))

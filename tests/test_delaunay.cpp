@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "delaunay/edge_ring.h"
-#include "delaunay/point_conditioning.h"
-#include "delaunay/spatial_sort.h"
+#include "points/point_conditioning.h"
+#include "points/spatial_sort.h"
 #include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
 #include "delaunay_test_support.h"

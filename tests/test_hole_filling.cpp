@@ -13,7 +13,7 @@
 
 #include "core/params.h"
 #include "core/pi.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/boundary_causes.h"
 #include "holes/face_journal.h"

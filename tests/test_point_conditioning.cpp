@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "core/point_input.h"
-#include "delaunay/point_conditioning.h"
 #include "delaunay_test_support.h"
+#include "points/point_conditioning.h"
+#include "points/point_input.h"
 #include "predicates/predicates.h"
 
 using namespace dbrg;
@@ -163,6 +163,20 @@ TEST_CASE("degenerate inputs are named with their counts") {
         }
         CHECK(condition_points(xyz.data(), 40, context, out) == DBRG_ERR_DEGENERATE_INPUT);
         CHECK(strstr(context.message(), "coplanar") != nullptr);
+        CHECK(strstr(context.message(), "line") == nullptr);
+    }
+    SUBCASE("on one line but for rounding: coplanar, and said to be on a line") {
+        // i * 0.1, i * 0.2, i * 0.3 are rounded off their line: exactly coplanar, not exactly collinear.
+        std::vector<double> xyz;
+        for (int i = 0; i < 500; ++i) xyz.insert(xyz.end(), {i * 0.1, i * 0.2, i * 0.3});
+        CHECK(condition_points(xyz.data(), 500, context, out) == DBRG_ERR_DEGENERATE_INPUT);
+        CHECK(strstr(context.message(), "500 distinct points") != nullptr);
+        CHECK(strstr(context.message(), "coplanar: they lie on one line but for rounding") != nullptr);
+    }
+    SUBCASE("one point, said once") {
+        const double one[] = {1, 2, 3};
+        CHECK(condition_points(one, 1, context, out) == DBRG_ERR_TOO_FEW_POINTS);
+        CHECK(strstr(context.message(), "1 point given;") != nullptr);
     }
     SUBCASE("coplanar except one point is fine") {
         std::vector<double> xyz;

@@ -9,7 +9,7 @@
 
 #include "core/context.h"
 #include "core/params.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
 #include "grow/triangle_geometry.h"

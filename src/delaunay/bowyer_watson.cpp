@@ -14,8 +14,9 @@
 #include "core/intrinsics.h"
 #include "core/parallel.h"
 #include "core/status.h"
-#include "delaunay/affine_checks.h"
 #include "delaunay/delaunay_builder.h"
+#include "points/point_input.h"
+#include "predicates/affine_checks.h"
 
 namespace dbrg {
 namespace {
@@ -424,13 +425,7 @@ template dbrg_status DelaunayBuilder::fail_internal<true>(Inserter& in, const ch
 
 dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Context& context) {
     clear();
-    if (count < 4) {
-        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%u points given; at least 4 distinct points are needed", count);
-    }
-    if (count > DBRG_MAX_POINTS) {
-        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%u points given; at most %zu are supported", count,
-                            static_cast<size_t>(DBRG_MAX_POINTS));
-    }
+    DBRG_PROPAGATE(check_point_count(count, context));
     points_ = points;
     vertex_count_ = count;
     counters = PredicateCounters();

@@ -10,7 +10,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
-#include "delaunay/spatial_sort.h"
+#include "points/spatial_sort.h"
 #include "delaunay/tetrahedralization.h"
 
 namespace dbrg {

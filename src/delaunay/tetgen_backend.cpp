@@ -9,6 +9,7 @@
 #include <new>
 
 #include "core/status.h"
+#include "points/point_input.h"
 
 namespace dbrg {
 namespace {
@@ -129,9 +130,7 @@ bool tetgen_available() { return true; }
 
 dbrg_status build_with_tetgen(const double* points, uint32_t count, Context& context, Tetrahedralization& out) {
     out.clear();
-    if (count < 4) {
-        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%u points given; at least 4 distinct points are needed", count);
-    }
+    DBRG_PROPAGATE(check_point_count(count, context));
     if (count > static_cast<uint32_t>(INT32_MAX / 3)) {
         return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%u points given; the TetGen backend takes at most %d",
                             count, INT32_MAX / 3);

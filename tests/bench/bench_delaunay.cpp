@@ -19,7 +19,7 @@
 
 #include "core/context.h"
 #include "core/splitmix64.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "delaunay/tetgen_backend.h"
 #include "delaunay/tetrahedralization.h"
 #include "io/mesh_io.h"

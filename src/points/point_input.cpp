@@ -1,5 +1,5 @@
 // Point input: checks the caller's strided float/double array and copies it into x, y, z doubles.
-#include "core/point_input.h"
+#include "points/point_input.h"
 
 #include <math.h>
 #include <string.h>
@@ -21,8 +21,8 @@ dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride,
         memcpy(p, bytes + i * stride, sizeof p);  // the caller's stride need not keep scalars aligned
         for (int k = 0; k < 3; ++k) {
             if (!isfinite(p[k])) {
-                return context.fail(DBRG_ERR_NON_FINITE_INPUT, "point %zu has a %s %c coordinate", i,
-                                    isnan(p[k]) ? "NaN" : "infinite", "xyz"[k]);
+                return context.fail(DBRG_ERR_NON_FINITE_INPUT, "point %zu has %s %c coordinate", i,
+                                    isnan(p[k]) ? "a NaN" : "an infinite", "xyz"[k]);
             }
             out[3 * i + k] = static_cast<double>(p[k]);
         }
@@ -32,7 +32,19 @@ dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride,
 
 } // namespace
 
-dbrg_status read_points(const dbrg_points* points, Context& context, Array<double>& xyz) {
+dbrg_status check_point_count(size_t count, Context& context) {
+    if (count < 4) {
+        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu point%s given; at least 4 distinct points are needed", count,
+                            count == 1 ? "" : "s");
+    }
+    if (count > DBRG_MAX_POINTS) {
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", count,
+                            static_cast<size_t>(DBRG_MAX_POINTS));
+    }
+    return DBRG_OK;
+}
+
+dbrg_status copy_caller_points(const dbrg_points* points, Context& context, Array<double>& xyz) {
     if (!points) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points is NULL");
     const int type = c_enum_value(points->type);
     if (type != DBRG_FLOAT32 && type != DBRG_FLOAT64) {
@@ -43,14 +55,12 @@ dbrg_status read_points(const dbrg_points* points, Context& context, Array<doubl
         return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->stride_bytes is %zu; a point needs at least %zu bytes",
                             points->stride_bytes, 3 * scalar_size);
     }
-    if (points->count > DBRG_MAX_POINTS) {
-        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", points->count,
-                            static_cast<size_t>(DBRG_MAX_POINTS));
-    }
     if (points->count > (SIZE_MAX - 3 * scalar_size) / points->stride_bytes) {
-        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points at a stride of %zu bytes overflow the address space",
-                            points->count, points->stride_bytes);
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu point%s at a stride of %zu bytes overflow%s the address space",
+                            points->count, points->count == 1 ? "" : "s", points->stride_bytes,
+                            points->count == 1 ? "s" : "");
     }
+    DBRG_PROPAGATE(check_point_count(points->count, context));
     if (points->count > 0 && !points->data) {
         return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->data is NULL but points->count is %zu", points->count);
     }
@@ -59,10 +69,6 @@ dbrg_status read_points(const dbrg_points* points, Context& context, Array<doubl
     DBRG_PROPAGATE(points->type == DBRG_FLOAT32
                        ? copy_points<float>(bytes, points->count, points->stride_bytes, context, xyz)
                        : copy_points<double>(bytes, points->count, points->stride_bytes, context, xyz));
-    if (points->count < 4) {
-        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given; at least 4 distinct points are needed",
-                            points->count);
-    }
     return DBRG_OK;
 }
 

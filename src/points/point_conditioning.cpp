@@ -1,17 +1,18 @@
 // Point conditioning: exact power-of-two rescaling, lexicographic order, duplicate merging and the
 // degeneracy checks (too few, collinear, coplanar) that the tetrahedralization relies on.
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 
 #include <math.h>
 
 #include <algorithm>
 
 #include "core/parallel.h"
-#include "core/point_input.h"
 #include "core/progress_span.h"
 #include "core/status.h"
-#include "delaunay/affine_checks.h"
-#include "delaunay/spatial_sort.h"
+#include "core/vec3.h"
+#include "points/point_input.h"
+#include "points/spatial_sort.h"
+#include "predicates/affine_checks.h"
 #include "predicates/predicates.h"
 
 namespace dbrg {
@@ -91,6 +92,24 @@ dbrg_status affine_rank(const ConditionedPoints& points, const ProgressSpan& pro
     return DBRG_OK;
 }
 
+// The largest distance of a point from the line through the two lexicographic extremes, as a share of their
+// distance. For points meant to lie on one line but rounded off it, this is a few units in the last place:
+// exactly coplanar, yet a user would call them collinear, and the message should say so.
+double spread_off_line(const ConditionedPoints& points) {
+    const uint32_t n = points.size();
+    const Vec3 a = load_vec3(points.point(0)), direction = load_vec3(points.point(n - 1)) - a;
+    const double length_squared = dot(direction, direction);
+    double largest = 0;
+    for (uint32_t i = 1; i + 1 < n; ++i) {
+        const Vec3 off = cross(load_vec3(points.point(i)) - a, direction);
+        largest = std::max(largest, dot(off, off));
+    }
+    return sqrt(largest) / length_squared;
+}
+
+// Spread off the line below which coplanar points are reported as collinear but for rounding.
+const double ROUNDING_SPREAD = 1e-9;
+
 } // namespace
 
 namespace {
@@ -101,14 +120,7 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     out.duplicates_merged = 0;
     out.scale_exponent = 0;
     out.origin[0] = out.origin[1] = out.origin[2] = 0.0;
-    if (count > DBRG_MAX_POINTS) {
-        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", count,
-                            static_cast<size_t>(DBRG_MAX_POINTS));
-    }
-    if (count < 4) {
-        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu points given; at least 4 distinct points are needed",
-                            count);
-    }
+    DBRG_PROPAGATE(check_point_count(count, context));
 
     // Each pass has a share of the progress roughly as its time on a large input.
     const ProgressSpan progress(context, DBRG_STAGE_VALIDATE, VALIDATE_READ_SHARE, VALIDATE_CONDITION_END);
@@ -194,6 +206,11 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     DBRG_PROPAGATE(affine_rank(out, progress.part(0.95, 1.0), rank));
     if (rank == 2) {
         return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %zu distinct points (of %zu given) are collinear",
+                            distinct, count);
+    }
+    if (rank == 3 && spread_off_line(out) < ROUNDING_SPREAD) {
+        return context.fail(DBRG_ERR_DEGENERATE_INPUT,
+                            "all %zu distinct points (of %zu given) are coplanar: they lie on one line but for rounding",
                             distinct, count);
     }
     if (rank == 3) {

@@ -2,7 +2,7 @@
 //
 // Based on: N. Amenta, S. Choi, G. Rote, "Incremental constructions con BRIO" (SoCG 2003) for the rounds;
 // J. Skilling, "Programming the Hilbert curve" (AIP Conf. Proc. 707, 2004) for the curve index.
-#include "delaunay/spatial_sort.h"
+#include "points/spatial_sort.h"
 
 #include <algorithm>
 #include <atomic>
