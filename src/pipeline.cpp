@@ -35,8 +35,8 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
 }
 
 dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
-    return build_tetrahedralization(context.params.backend, conditioned.coordinates.data(), conditioned.size(), context,
-                                    delaunay);
+    return build_tetrahedralization(context.params.backend, conditioned.coordinates.data(), conditioned.size(),
+                                    conditioned.order, context, delaunay);
 }
 
 } // namespace

@@ -146,14 +146,18 @@ TEST_CASE("the insertion order is streamed on Hilbert-numbered points and equals
             CHECK(ordered == (numbered == 1));
             Array<uint32_t> sorted(context.memory);
             REQUIRE(brio_hilbert_order(points.coordinates.data(), n, sort, sorted) == DBRG_OK);
-            BrioOrder order(context.memory);
-            REQUIRE(order.prepare(points.coordinates.data(), n, context) == DBRG_OK);
-            CHECK(order.streamed() == (numbered == 1));
-            uint32_t v = 0, i = 0;
-            bool same = true;
-            while (order.next(v)) same &= i < n && sorted[i++] == v;
-            CHECK(same);
-            CHECK(i == n);
+            // Checked, and taken from the points as renumber_spatially marked them: the same order.
+            CHECK((points.order == PointOrder::hilbert) == (numbered == 1));
+            for (PointOrder told : {PointOrder::any, points.order}) {
+                BrioOrder order(context.memory);
+                REQUIRE(order.prepare(points.coordinates.data(), n, told, context) == DBRG_OK);
+                CHECK(order.streamed() == (numbered == 1));
+                uint32_t v = 0, i = 0;
+                bool same = true;
+                while (order.next(v)) same &= i < n && sorted[i++] == v;
+                CHECK(same);
+                CHECK(i == n);
+            }
         }
         // The tetrahedralization of the renumbered points is valid and has the same tetrahedra.
         Tetrahedralization tets(context.memory);

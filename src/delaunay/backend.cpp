@@ -5,10 +5,10 @@
 
 namespace dbrg {
 
-dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count, Context& context,
-                                     Tetrahedralization& out) {
+dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count, PointOrder order,
+                                     Context& context, Tetrahedralization& out) {
     if (backend == DBRG_BACKEND_TETGEN) return build_with_tetgen(points, count, context, out);
-    return out.build(points, count, context);
+    return out.build(points, count, context, order);
 }
 
 } // namespace dbrg

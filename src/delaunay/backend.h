@@ -9,9 +9,9 @@
 
 namespace dbrg {
 
-// Builds `out` with `backend`: Tetrahedralization::build for DBRG_BACKEND_BUILTIN, build_with_tetgen
-// for DBRG_BACKEND_TETGEN; returns their status.
-dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count, Context& context,
-                                     Tetrahedralization& out);
+// Builds `out` with `backend`: Tetrahedralization::build for DBRG_BACKEND_BUILTIN (told how the points
+// are numbered), build_with_tetgen for DBRG_BACKEND_TETGEN; returns their status.
+dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count, PointOrder order,
+                                     Context& context, Tetrahedralization& out);
 
 } // namespace dbrg

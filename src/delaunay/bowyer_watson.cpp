@@ -423,7 +423,7 @@ template dbrg_status DelaunayBuilder::locate<false>(Inserter& in, uint32_t start
 template dbrg_status DelaunayBuilder::fail_internal<false>(Inserter& in, const char* message);
 template dbrg_status DelaunayBuilder::fail_internal<true>(Inserter& in, const char* message);
 
-dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Context& context) {
+dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Context& context, PointOrder point_order) {
     clear();
     DBRG_PROPAGATE(check_point_count(count, context));
     points_ = points;
@@ -436,7 +436,7 @@ dbrg_status Tetrahedralization::build(const double* points, uint32_t count, Cont
     // memory (a copy in insertion order would cost 24 bytes per point at the peak), and the insertion
     // order is then streamed instead of sorted and stored.
     BrioOrder order(context.memory);
-    dbrg_status status = order.prepare(points, count, context);
+    dbrg_status status = order.prepare(points, count, point_order, context);
     const double insert_start = seconds_now();
     if (status == DBRG_OK) {
         DelaunayBuilder builder(*this, context);

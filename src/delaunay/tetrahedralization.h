@@ -6,6 +6,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "points/spatial_sort.h"
 #include "predicates/predicates.h"
 
 namespace dbrg {
@@ -54,7 +55,8 @@ public:
     // while threads inserting at once leave them in other slots (canonical_corners and the pipeline's
     // output order do not depend on slots). The points are read in place, so numbering them along a
     // space-filling curve first (renumber_spatially, as the pipeline does) keeps neighbours close in memory.
-    dbrg_status build(const double* points, uint32_t count, Context& context);
+    // `order` says how the points are numbered, when the caller knows (see BrioOrder::prepare).
+    dbrg_status build(const double* points, uint32_t count, Context& context, PointOrder order = PointOrder::any);
 
     // Empties the object and gives its memory back.
     void clear();

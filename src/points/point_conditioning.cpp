@@ -248,6 +248,7 @@ dbrg_status renumber_spatially(ConditionedPoints& points, Context& context) {
     }));
     points.coordinates.swap(coordinates);
     points.input_index.swap(input_index);
+    points.order = PointOrder::hilbert;
     return DBRG_OK;
 }
 

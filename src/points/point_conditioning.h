@@ -7,6 +7,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "points/spatial_sort.h"
 
 namespace dbrg {
 
@@ -28,6 +29,7 @@ struct ConditionedPoints {
     double origin[3] = {0, 0, 0};
     int scale_exponent = 0;
     uint32_t duplicates_merged = 0;
+    PointOrder order = PointOrder::any;  // hilbert once renumber_spatially has run
 
     uint32_t size() const { return static_cast<uint32_t>(input_index.size()); }
     const double* point(uint32_t v) const { return coordinates.data() + 3 * static_cast<size_t>(v); }

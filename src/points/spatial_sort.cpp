@@ -164,7 +164,7 @@ int BrioOrder::round_of(uint32_t index, int rounds) {
     return rounds - 1 - earlier;
 }
 
-dbrg_status BrioOrder::prepare(const double* points, uint32_t count, Context& context) {
+dbrg_status BrioOrder::prepare(const double* points, uint32_t count, PointOrder known, Context& context) {
     order_.release();
     count_ = count;
     position_ = 0;
@@ -172,7 +172,9 @@ dbrg_status BrioOrder::prepare(const double* points, uint32_t count, Context& co
     rounds_ = round_count(count);
     const ProgressSpan progress(context, DBRG_STAGE_SORT);
     DBRG_PROPAGATE(progress.report(0, 1));
-    DBRG_PROPAGATE(in_hilbert_order(points, count, progress.part(0.0, 0.5), streamed_));
+    // The pipeline's points were just numbered along the curve: their keys need not be computed again.
+    streamed_ = known == PointOrder::hilbert;
+    if (!streamed_) DBRG_PROPAGATE(in_hilbert_order(points, count, progress.part(0.0, 0.5), streamed_));
     if (streamed_) return progress.report(1, 1);
     DBRG_PROPAGATE(brio_hilbert_order(points, count, progress.part(0.5, 1.0), order_));
     // The order lists the rounds one after the other.

@@ -12,6 +12,10 @@
 
 namespace dbrg {
 
+// How points are numbered: in any order, or along the Hilbert curve over their bounding box (as
+// renumber_spatially leaves them), which the insertion order can then take as it is.
+enum class PointOrder { any, hilbert };
+
 // Bits per axis of the grid the Hilbert order is computed on (the sort key keeps 7 bits for the round).
 constexpr int HILBERT_BITS = 19;
 
@@ -39,8 +43,9 @@ class BrioOrder {
 public:
     explicit BrioOrder(Memory& memory) : order_(memory) {}
 
+    // `known` says how the points are numbered, when the caller knows (PointOrder::any: it is checked).
     // Reports DBRG_STAGE_SORT progress; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
-    dbrg_status prepare(const double* points, uint32_t count, Context& context);
+    dbrg_status prepare(const double* points, uint32_t count, PointOrder known, Context& context);
 
     // The next point of the order into v; false once all have been given.
     bool next(uint32_t& v) {
