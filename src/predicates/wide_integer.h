@@ -10,6 +10,10 @@
 #include <stdint.h>
 #include <string.h>
 
+#if defined(__x86_64__)
+#include <x86intrin.h>
+#endif
+
 namespace dbrg {
 namespace wide {
 
@@ -18,8 +22,8 @@ struct Int {
     uint64_t limb[N];
 };
 
-// The limb operations, portably; the ones below use a 128-bit type instead where there is one, which
-// compilers turn into add-with-carry and one full multiplication.
+// The limb operations, portably; the ones below use the target's carry flag and full multiplication
+// where they can.
 namespace portable {
 
 // a + b + carry, carry (0 or 1) replaced by the carry out.
@@ -54,21 +58,27 @@ namespace portable {
 
 } // namespace portable
 
-#if defined(__SIZEOF_INT128__)
-__extension__ typedef unsigned __int128 DoubleLimb;  // __extension__: -Wpedantic knows no 128-bit type
-__extension__ typedef __int128 SignedDoubleLimb;
-
+#if defined(__x86_64__)
+// Compilers turn chains of these into add-with-carry instructions; from portable code they do not.
 [[gnu::always_inline]] inline uint64_t add(uint64_t a, uint64_t b, uint64_t& carry) {
-    const DoubleLimb sum = static_cast<DoubleLimb>(a) + b + carry;
-    carry = static_cast<uint64_t>(sum >> 64);
-    return static_cast<uint64_t>(sum);
+    unsigned long long sum;
+    carry = _addcarry_u64(static_cast<unsigned char>(carry), a, b, &sum);
+    return sum;
 }
 
 [[gnu::always_inline]] inline uint64_t subtract(uint64_t a, uint64_t b, uint64_t& borrow) {
-    const DoubleLimb difference = static_cast<DoubleLimb>(a) - b - borrow;
-    borrow = static_cast<uint64_t>(difference >> 64) & 1;
-    return static_cast<uint64_t>(difference);
+    unsigned long long difference;
+    borrow = _subborrow_u64(static_cast<unsigned char>(borrow), a, b, &difference);
+    return difference;
 }
+#else
+using portable::add;
+using portable::subtract;
+#endif
+
+#if defined(__SIZEOF_INT128__)
+__extension__ typedef unsigned __int128 DoubleLimb;  // __extension__: -Wpedantic knows no 128-bit type
+__extension__ typedef __int128 SignedDoubleLimb;
 
 [[gnu::always_inline]] inline uint64_t multiply_add(uint64_t a, uint64_t b, uint64_t c, uint64_t d, uint64_t& hi) {
     const DoubleLimb sum = static_cast<DoubleLimb>(a) * b + c + d;
@@ -76,9 +86,7 @@ __extension__ typedef __int128 SignedDoubleLimb;
     return static_cast<uint64_t>(sum);
 }
 #else
-using portable::add;
 using portable::multiply_add;
-using portable::subtract;
 #endif
 
 // All ones when a is negative, else zero.
@@ -122,11 +130,24 @@ template <int N, int M>
 }
 
 #if defined(__SIZEOF_INT128__)
-// One signed multiplication instruction where the target has it.
+// The products of one-limb differences and of their two-limb minors, the bulk of the exact stage, with
+// the target's signed multiplication where it has one.
 [[gnu::always_inline]] inline Int<2> operator*(const Int<1>& a, const Int<1>& b) {
     const SignedDoubleLimb product = static_cast<SignedDoubleLimb>(static_cast<int64_t>(a.limb[0])) *
                                      static_cast<int64_t>(b.limb[0]);
     return Int<2>{{static_cast<uint64_t>(product), static_cast<uint64_t>(static_cast<DoubleLimb>(product) >> 64)}};
+}
+
+// a (b1 2^64 + b0) = a b0 + a b1 2^64, where a b0 is the unsigned product of the bit patterns less b0 2^64
+// for negative a. Everything above the low limb is the signed (a b) >> 64, below 2^126 in magnitude.
+[[gnu::always_inline]] inline Int<3> operator*(const Int<1>& a, const Int<2>& b) {
+    const DoubleLimb low = static_cast<DoubleLimb>(a.limb[0]) * b.limb[0];
+    const SignedDoubleLimb high = static_cast<SignedDoubleLimb>(static_cast<int64_t>(a.limb[0])) *
+                                  static_cast<int64_t>(b.limb[1]);
+    const SignedDoubleLimb upper = static_cast<SignedDoubleLimb>(low >> 64) + high -
+                                   static_cast<SignedDoubleLimb>(b.limb[0] & sign_mask(a));
+    return Int<3>{{static_cast<uint64_t>(low), static_cast<uint64_t>(upper),
+                   static_cast<uint64_t>(static_cast<DoubleLimb>(upper) >> 64)}};
 }
 #endif
 
