@@ -1217,6 +1217,45 @@ TEST_CASE("the exact stage is scale-free: signs and cofactors unchanged from 2^-
     CHECK(zeros > 300);
 }
 
+TEST_CASE("the exact stage at the limits of each of its integer types") {
+    // Corners of the box [-x, x] x [-y, y] x [-z, z] beside q = (g, 0, 0): the differences to q reach
+    // 2^width - 1 units of g, the most the integer type chosen for that width must hold, and their
+    // determinants come near the largest the type was sized for. The box's eight corners are cospherical
+    // and each face's four cocircular; q lies inside both. Unequal sides keep wrapped values from
+    // cancelling by accident.
+    for (const int width : {5, 11, 12, 13, 40, 61, 62, 63, 64, 100, 125, 126, 127, 128, 129, 200, 253, 254}) {
+        for (const double depth : {0.375, 0.6875, 0.9375}) {
+            CAPTURE(width);
+            CAPTURE(depth);
+            const double g = ldexp(1.0, -width);
+            const double ulp = width <= 54 ? g : ldexp(1.0, -53);
+            const double x = 1 - 2 * ulp, y = 1 - 6 * ulp, z = depth - ulp;  // x + g < 1 = 2^top
+            const double a[3] = {x, y, z}, b[3] = {x, -y, -z}, c[3] = {-x, y, -z}, d[3] = {-x, -y, z};
+            const double q[3] = {g, 0, 0}, corner[3] = {-x, -y, -z}, face_corner[3] = {x, -y, z};
+            REQUIRE(exact::orient3d(a, b, c, d) == 1);
+            REQUIRE(exact::orient3d(b, a, c, d) == -1);
+            REQUIRE(exact::orient3d(a, b, c, q) == 1);  // q is on the side of the plane abc where d is
+            int orientations[5];
+            REQUIRE(exact::insphere(a, b, c, d, q, orientations) == 1);
+            REQUIRE(exact::insphere(b, a, c, d, q, orientations) == -1);
+            REQUIRE(exact::insphere(a, b, c, d, corner, orientations) == 0);
+            for (int i = 0; i < 5; ++i) {
+                const double* points[5] = {a, b, c, d, corner};
+                const double* other[4];
+                for (int j = 0, k = 0; j < 5; ++j)
+                    if (j != i) other[k++] = points[j];
+                REQUIRE(orientations[i] == exact::orient3d(other[0], other[1], other[2], other[3]));
+            }
+            // The face at x: (x, y, z), (x, -y, -z), (x, y, -z) and (x, -y, z); q moved onto it stays inside.
+            const double f1[3] = {x, y, z}, f2[3] = {x, -y, -z}, f3[3] = {x, y, -z}, on_face[3] = {x, g, 0};
+            const int turn = exact::orient2d(f1, f2, f3, 1, 2);
+            REQUIRE(turn != 0);
+            REQUIRE(exact::incircle_lifted(f1, f2, f3, on_face, 1, 2, orientations) == turn);
+            REQUIRE(exact::incircle_lifted(f1, f2, f3, face_corner, 1, 2, orientations) == 0);
+        }
+    }
+}
+
 TEST_CASE("tetrahedralizations with exactly cospherical, cocircular and coplanar sets 2^-20 to 2^-150 small are Delaunay") {
     // Beside a unit cloud, so that the conditioned coordinates of the small sets span up to about 190 bits.
     const int scales[][2] = {{20, 40}, {60, 100}, {100, 80}, {150, 30}, {180, 8}};  // (2^-k, width)

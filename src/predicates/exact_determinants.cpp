@@ -19,11 +19,15 @@ namespace {
 using wide::Binary;
 using wide::Int;
 
-// The least e with x < 2^e, for normal x > 0 (an e with x < 2^e for subnormal x).
-int exponent_above(double x) {
+uint64_t bits_of(double x) {
     uint64_t bits;
     memcpy(&bits, &x, sizeof bits);
-    const int biased = static_cast<int>(bits >> 52) & 0x7ff;
+    return bits;
+}
+
+// The least e with x < 2^e, for normal x > 0 (an e with x < 2^e for subnormal x).
+int exponent_above(double x) {
+    const int biased = static_cast<int>(bits_of(x) >> 52) & 0x7ff;
     return (biased != 0 ? biased : 1) - 1022;
 }
 
@@ -41,26 +45,51 @@ template <int Rows>
 struct Differences {
     double hi[Rows][3];
     double lo[Rows][3];
-    int top;  // every |p_i - p_last| is below 2^top (0 when all are 0)
+    int top;     // every |p_i - p_last| is below 2^top (0 when all are 0)
+    bool tails;  // some lo is not 0: some difference is not a double
 };
 
 template <int Points>
 [[gnu::always_inline]] inline Differences<Points - 1> differences(const double* const* points) {
     Differences<Points - 1> d;
     double largest = 0;
+    uint64_t tail_bits = 0;
     for (int i = 0; i < Points - 1; ++i) {
         for (int k = 0; k < 3; ++k) {
             const double a = points[i][k], b = points[Points - 1][k];
             const double hi = a - b, b_virtual = a - hi, a_virtual = hi + b_virtual;
+            const double lo = (a - a_virtual) + (b_virtual - b);
             d.hi[i][k] = hi;
-            d.lo[i][k] = (a - a_virtual) + (b_virtual - b);
+            d.lo[i][k] = lo;
+            tail_bits |= bits_of(lo) << 1;  // not the sign: -0 is 0
             largest = fabs(hi) > largest ? fabs(hi) : largest;
         }
     }
+    d.tails = tail_bits != 0;
     // Rounding is monotone and 2^top is a double: a rounded difference below 2^top is one of an exact
     // difference below it.
     d.top = largest == 0 ? 0 : exponent_above(largest);
     return d;
+}
+
+// rows = the differences / 2^(top - 11) as machine words, when each is a multiple of that power of two
+// (then each is below 2^11). Returns false, rows unspecified, when one is not.
+template <int Rows>
+[[gnu::always_inline]] inline bool machine_word_rows(const Differences<Rows>& d, int64_t (*rows)[3]) {
+    const int scale_exponent = 11 - d.top;
+    if (d.tails || scale_exponent < -1022 || scale_exponent > 1023) return false;  // tails span over 53 bits
+    const double scale = power_of_two(scale_exponent), round = 0x1.8p52;
+    // (v + round) - round is v rounded to an integer, for |v| < 2^51: v is one when the two are equal,
+    // and then the low bits of v + round are v's. The differences' bits are ORed (x - x is +0, never -0).
+    uint64_t fractions = 0;
+    for (int i = 0; i < Rows; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double v = d.hi[i][k] * scale, shifted = v + round, integer = shifted - round;
+            fractions |= bits_of(integer - v);
+            rows[i][k] = static_cast<int64_t>(bits_of(shifted) - bits_of(round));
+        }
+    }
+    return fractions == 0;
 }
 
 // rows = the differences / 2^(top - 62) as one-limb integers, when each is a multiple of that power of two
@@ -74,9 +103,15 @@ template <int Rows>
     bool integral = true;
     for (int i = 0; i < Rows; ++i) {
         for (int k = 0; k < 3; ++k) {
-            const double hi = d.hi[i][k] * scale, lo = d.lo[i][k] * scale;  // both below 2^62
-            const int64_t hi_integer = static_cast<int64_t>(hi), lo_integer = static_cast<int64_t>(lo);
-            integral &= (static_cast<double>(hi_integer) == hi) & (static_cast<double>(lo_integer) == lo);
+            const double hi = d.hi[i][k] * scale;  // below 2^62
+            const int64_t hi_integer = static_cast<int64_t>(hi);
+            integral &= static_cast<double>(hi_integer) == hi;
+            int64_t lo_integer = 0;
+            if (d.tails) {
+                const double lo = d.lo[i][k] * scale;
+                lo_integer = static_cast<int64_t>(lo);
+                integral &= static_cast<double>(lo_integer) == lo;
+            }
             rows[i][k].limb[0] = static_cast<uint64_t>(hi_integer + lo_integer);
         }
     }
@@ -115,18 +150,10 @@ void rows_on_grid(const Differences<Rows>& d, int unit, Int<K> (*rows)[3]) {
 // any one point cloud whose coordinates are of similar size, more for coordinates near 0 next to large ones.
 template <int Rows, class Evaluate>
 int evaluate_exactly(const Differences<Rows>& d, Evaluate evaluate) {
+    int64_t small[Rows][3];
+    if (machine_word_rows(d, small)) return evaluate(small);
     Int<1> one[Rows][3];
-    if (one_limb_rows(d, one)) {
-        // Multiples of 2^51 there are multiples of 2^(top - 11), below 2^11 once divided.
-        uint64_t low_bits = 0;
-        for (int i = 0; i < Rows; ++i)
-            for (int k = 0; k < 3; ++k) low_bits |= one[i][k].limb[0];
-        if ((low_bits & ((uint64_t(1) << 51) - 1)) != 0) return evaluate(one);
-        int64_t small[Rows][3];
-        for (int i = 0; i < Rows; ++i)
-            for (int k = 0; k < 3; ++k) small[i][k] = static_cast<int64_t>(one[i][k].limb[0]) / (int64_t(1) << 51);
-        return evaluate(small);
-    }
+    if (one_limb_rows(d, one)) return evaluate(one);
     const int unit = finest_unit(d), width = d.top - unit;
     if (width <= 62) {
         rows_on_grid(d, unit, one);
