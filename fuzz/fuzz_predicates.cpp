@@ -1,8 +1,10 @@
 // Fuzz target: orient3d, insphere_exact, insphere_sos and incircle3d_sos on random and near-degenerate
 // quadruples and quintuples. On integer coordinates (|x| <= 2^16, then translated and scaled by exact
-// amounts) the signs must agree with 128-bit integer references; on any input the perturbed predicates
-// must never answer 0 where they promise a decision, must agree with the exact ones wherever those are
-// not 0, and must change sign exactly with the parity of a permutation of their arguments.
+// amounts) the signs must agree with 128-bit integer references; on exactly cospherical points whose
+// differences span up to 200 bits, insphere must be 0, and one grain off the sphere it must say which side;
+// on any input the perturbed predicates must never answer 0 where they promise a decision, must agree with
+// the exact ones wherever those are not 0, and must change sign exactly with the parity of a permutation
+// of their arguments.
 #include <math.h>
 #include <string.h>
 
@@ -18,7 +20,8 @@ using namespace dbrg::fuzz;
 
 namespace {
 
-enum class Mode { wide_integers, small_integers, near_coplanar, near_cospherical, raw_doubles };
+enum class Mode { wide_integers, small_integers, near_coplanar, near_cospherical, raw_doubles, wide_cospherical };
+constexpr uint32_t MODE_COUNT = 6;
 
 int64_t signed_value(FuzzInput& input, int64_t limit) {
     return static_cast<int64_t>(input.u32() % static_cast<uint32_t>(2 * limit + 1)) - limit;
@@ -125,23 +128,61 @@ int check_incircle(const double* a, const double* b, const double* c, const doub
     return answer;
 }
 
+// Five of the 48 signed permutations of (x, y, z), with x below 1/2 of up to 53 bits, y below 1/4 of up to
+// 32 bits and z below 1/2, odd, of grain 2^-(w + 1) for a drawn w <= 198: all on one sphere about the
+// origin, with differences spanning up to about 200 bits (every integer type of the exact stage). insphere
+// must be 0; then the fifth point moves by one grain along its coordinate +-z, away from the centre or
+// towards it, which takes it outside or inside. Leaves the moved points in coordinates.
+void check_wide_cospherical(FuzzInput& input, double coordinates[5][3], PredicateCounters& counters) {
+    const int width = 1 + static_cast<int>(input.below(198));
+    const double grain = ldexp(1.0, -(width + 1));
+    const uint64_t x_high = input.u32();
+    const uint64_t x_bits = (x_high << 21 ^ input.u32()) | 1;  // odd, below 2^53
+    const uint32_t z_bits = (input.u32() & ((uint32_t(1) << (width < 20 ? width : 20)) - 1)) | 1;
+    const double r[3] = {ldexp(static_cast<double>(x_bits), -54), ldexp(static_cast<double>(input.u32()), -34),
+                         static_cast<double>(z_bits) * grain};
+    static const int ORDERS[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int i = 0; i < 5; ++i) {
+        const uint32_t choice = input.byte();
+        const int* order = ORDERS[choice % 6];
+        for (int k = 0; k < 3; ++k) coordinates[i][k] = (choice >> (3 + k) & 1) ? -r[order[k]] : r[order[k]];
+    }
+    const double* p[5] = {coordinates[0], coordinates[1], coordinates[2], coordinates[3], coordinates[4]};
+    FUZZ_CHECK_WHY(insphere_exact(p[0], p[1], p[2], p[3], p[4], counters) == 0,
+                   "insphere_exact is not 0 on exactly cospherical points");
+    const int axis = fabs(p[4][0]) == r[2] ? 0 : fabs(p[4][1]) == r[2] ? 1 : 2;
+    const bool outward = input.flag();
+    coordinates[4][axis] += ((coordinates[4][axis] > 0) == outward ? 1 : -1) * grain;
+    const int o = orient3d(p[0], p[1], p[2], p[3], counters);
+    if (o != 0 && fabs(r[2]) != fabs(r[0]) && fabs(r[2]) != fabs(r[1])) {
+        FUZZ_CHECK_WHY(insphere_exact(p[0], p[1], p[2], p[3], p[4], counters) == (outward ? -o : o),
+                       "insphere_exact gets the side of a point one grain off a sphere wrong");
+    }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     FuzzInput input(data, size);
-    const Mode mode = static_cast<Mode>(input.below(5));
+    const Mode mode = static_cast<Mode>(input.below(MODE_COUNT));
     const uint32_t permutation_index = input.byte();
     PredicateCounters counters;
     double coordinates[5][3];
 
     if (mode == Mode::raw_doubles) {
-        // 53-bit integers scaled by 2^-60 .. 2^0: conditioned sizes, no overflow or underflow in the expansions.
+        // 53-bit integers scaled by 2^-60 .. 2^0: conditioned sizes, within the span the exact stage needs.
         for (auto& point : coordinates) {
             for (double& x : point) {
                 const int64_t mantissa = static_cast<int64_t>(static_cast<uint64_t>(input.u32()) << 21 ^ input.u32()) >> 10;
                 x = ldexp(static_cast<double>(mantissa), -53 - static_cast<int>(input.below(61)));
             }
         }
+        check_consistency(coordinates, permutation_index, counters);
+        return 0;
+    }
+
+    if (mode == Mode::wide_cospherical) {
+        check_wide_cospherical(input, coordinates, counters);
         check_consistency(coordinates, permutation_index, counters);
         return 0;
     }

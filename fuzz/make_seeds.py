@@ -130,7 +130,8 @@ RECONSTRUCT.update({
 })
 
 # fuzz_predicates: mode (0 wide integers, 1 small integers, 2 near-coplanar, 3 near-cospherical, 4 raw
-# doubles), permutation, then the mode's numbers; short inputs are padded with zeros by the reader.
+# doubles, 5 wide cospherical), permutation, then the mode's numbers; short inputs are padded with zeros by
+# the reader.
 def predicates(mode, permutation, body):
     return bytes([mode, permutation]) + body
 
@@ -144,7 +145,7 @@ def pseudo_random_bytes(seed, count):
 
 
 PREDICATES = {f"mode{mode}_{k}": predicates(mode, 17 * k + mode, pseudo_random_bytes(31 * mode + k, 160))
-              for mode in range(5) for k in range(3)}
+              for mode in range(6) for k in range(3)}
 PREDICATES["all_zero"] = bytes(64)
 
 PLY_ASCII = b"""ply

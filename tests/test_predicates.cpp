@@ -1,6 +1,7 @@
 // Tests of the geometric predicates against an independent exact reference: coordinates are turned into
-// integers (every test coordinate is a multiple of 2^-120) and determinants are expanded by cofactors in a
-// small fixed-width two's-complement integer type, with symbolic perturbations made explicit.
+// integers (every test coordinate is a multiple of 2^-200, the grid of conditioned points) and determinants
+// are expanded by cofactors in a simple fixed-width two's-complement integer type of 32-bit limbs, with
+// symbolic perturbations made explicit.
 #include <doctest/doctest.h>
 
 #include <math.h>
@@ -10,18 +11,24 @@
 #include <vector>
 
 #include "core/splitmix64.h"
-#include "predicates/expansion.h"
+#include "delaunay/point_conditioning.h"
+#include "delaunay/tetrahedralization.h"
+#include "predicates/exact_determinants.h"
 #include "predicates/filters.h"
 #include "predicates/predicates.h"
+#include "predicates/wide_integer.h"
+
+#include "delaunay_test_support.h"
 
 using namespace dbrg;
 
 namespace {
 
-// A signed integer of 24 x 32 bits in two's complement; products are taken modulo 2^768, which is exact
-// while the true values stay below 2^767 (the tests stay below 2^640).
+// A signed integer of 36 x 32 bits in two's complement; products are taken modulo 2^1152, which is exact
+// while the true values stay below 2^1151 (an insphere determinant of coordinates below 2^18 on the
+// 2^-200 grid stays below 2^1110).
 struct Big {
-    static const int LIMBS = 24;
+    static const int LIMBS = 36;
     uint32_t limb[LIMBS];
 };
 
@@ -59,25 +66,36 @@ Big operator-(const Big& a) {
 
 Big operator-(const Big& a, const Big& b) { return a + (-b); }
 
-Big operator*(const Big& a, const Big& b) {
-    Big r = big(0);
-    for (int i = 0; i < Big::LIMBS; ++i) {
-        uint64_t carry = 0;
-        for (int j = 0; i + j < Big::LIMBS; ++j) {
-            const uint64_t t = uint64_t(a.limb[i]) * b.limb[j] + r.limb[i + j] + carry;
-            r.limb[i + j] = static_cast<uint32_t>(t);
-            carry = t >> 32;
-        }
-    }
-    return r;
-}
-
 int sign(const Big& a) {
     if (a.limb[Big::LIMBS - 1] >> 31) return -1;
     for (int i = 0; i < Big::LIMBS; ++i)
         if (a.limb[i]) return 1;
     return 0;
 }
+
+int significant_limbs(const Big& a) {
+    int n = Big::LIMBS;
+    while (n > 0 && a.limb[n - 1] == 0) --n;
+    return n;
+}
+
+// The product of the magnitudes, schoolbook over their significant limbs, with the sign put back.
+Big operator*(const Big& a, const Big& b) {
+    const Big x = sign(a) < 0 ? -a : a, y = sign(b) < 0 ? -b : b;
+    const int nx = significant_limbs(x), ny = significant_limbs(y);
+    Big r = big(0);
+    for (int i = 0; i < nx; ++i) {
+        uint64_t carry = 0;
+        for (int j = 0; i + j < Big::LIMBS && (j < ny || carry != 0); ++j) {
+            const uint64_t t = uint64_t(x.limb[i]) * (j < ny ? y.limb[j] : 0) + r.limb[i + j] + carry;
+            r.limb[i + j] = static_cast<uint32_t>(t);
+            carry = t >> 32;
+        }
+    }
+    return (sign(a) < 0) != (sign(b) < 0) ? -r : r;
+}
+
+bool equal(const Big& a, const Big& b) { return sign(a - b) == 0; }
 
 // Determinant of an n x n matrix (row-major, n <= 5) by cofactor expansion along the first row.
 Big determinant(const Big* m, int n) {
@@ -96,7 +114,7 @@ Big determinant(const Big* m, int n) {
 }
 
 // x * 2^scale as an integer; the test inputs are built so that this is exact.
-Big fixed(double x, int scale = 120) {
+Big fixed(double x, int scale = 200) {
     double magnitude = fabs(ldexp(x, scale));
     REQUIRE(magnitude == floor(magnitude));
     REQUIRE(magnitude < ldexp(1.0, 700));
@@ -260,7 +278,7 @@ std::vector<Point> radius5_sphere() {
 }
 
 // 24 points (±1, ±2^-60, 0) and their coordinate permutations: all on the sphere |p|^2 = 1 + 2^-120, and
-// many of their differences (1 - 2^-60) are not representable, which forces the raw-coordinate fallback.
+// many of their differences (1 - 2^-60) are not representable: the exact stage gets them in two parts.
 std::vector<Point> wide_range_sphere() {
     const double small = ldexp(1.0, -60);
     const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
@@ -393,7 +411,7 @@ TEST_CASE("five points of the radius-5 integer sphere are always cospherical") {
     }
 }
 
-TEST_CASE("points whose differences are inexact use the raw-coordinate fallback exactly") {
+TEST_CASE("points whose differences are not representable get exact signs") {
     const std::vector<Point> sphere = wide_range_sphere();
     PredicateCounters counters;
     const size_t n = sphere.size();
@@ -868,69 +886,421 @@ TEST_CASE("on needles the insphere filter decides where a bound from the largest
     CHECK(product_only == 0);
 }
 
-// Whether the components of e are non-zero (but for a lone zero), increase in magnitude and do not overlap:
-// each one is a multiple of a power of two larger than the previous one's magnitude.
-bool well_formed(const double* e, int n) {
-    for (int i = 0; i < n; ++i) {
-        if (e[i] == 0 && n > 1) return false;
-        if (i == 0) continue;
-        int exponent;
-        frexp(e[i - 1], &exponent);  // |e[i - 1]| < 2^exponent
-        if (fmod(e[i], ldexp(1.0, exponent)) != 0) return false;
+namespace {
+
+// An Int<N> as a Big, sign-extended.
+template <int N>
+Big big_of(const wide::Int<N>& a) {
+    const uint32_t extension = (a.limb[N - 1] >> 63) ? 0xffffffffu : 0;
+    Big r;
+    for (int i = 0; i < Big::LIMBS; ++i) r.limb[i] = i < 2 * N ? static_cast<uint32_t>(a.limb[i / 2] >> (32 * (i % 2))) : extension;
+    return r;
+}
+
+Big unsigned_big(uint64_t value) {
+    Big r = big(0);
+    r.limb[0] = static_cast<uint32_t>(value);
+    r.limb[1] = static_cast<uint32_t>(value >> 32);
+    return r;
+}
+
+// a modulo 2^(64 n), as a signed value of n limbs.
+Big truncated(const Big& a, int n) {
+    Big r = a;
+    const uint32_t extension = (r.limb[2 * n - 1] >> 31) ? 0xffffffffu : 0;
+    for (int i = 2 * n; i < Big::LIMBS; ++i) r.limb[i] = extension;
+    return r;
+}
+
+// Random limbs, the top one often 0, all ones or 2^63 (small values of either sign, the most negative).
+template <int N>
+wide::Int<N> random_int(Random& random) {
+    wide::Int<N> a;
+    for (int i = 0; i < N; ++i) a.limb[i] = random.next();
+    const uint64_t tops[3] = {0, ~uint64_t(0), uint64_t(1) << 63};
+    const uint64_t choice = random.next() % 6;
+    if (choice < 3) a.limb[N - 1] = tops[choice];
+    return a;
+}
+
+template <int N, int M>
+void check_wide_arithmetic(Random& random) {
+    const wide::Int<N> a = random_int<N>(random), b = random_int<N>(random);
+    const wide::Int<M> c = random_int<M>(random);
+    REQUIRE(equal(big_of(a + b), truncated(big_of(a) + big_of(b), N)));
+    REQUIRE(equal(big_of(a - b), truncated(big_of(a) - big_of(b), N)));
+    REQUIRE(equal(big_of(a * c), big_of(a) * big_of(c)));  // never wraps: |a c| <= 2^(64 (N + M) - 2)
+    REQUIRE(wide::sign(a) == sign(big_of(a)));
+}
+
+// An odd integer of exactly `bits` bits, 1 <= bits <= 53.
+double odd_of_bits(Random& random, int bits) {
+    const uint64_t top = uint64_t(1) << (bits - 1);
+    return static_cast<double>(top | (random.next() & (top - 1)) | 1);
+}
+
+// (x, y, z), all below 1/2: x in [1/4, 1/2) with min(width, 53) bits, y with about width / 2 bits, z of
+// grain 2^-(width + 1). Differences of points made of these components span about width + 2 bits, from
+// the largest to the finest grain: width 1 to 198 reaches every integer type of the exact stage.
+void wide_vector(Random& random, int width, double r[3]) {
+    const int x_bits = std::min(width, 53), y_bits = std::min(std::max(width / 2, 1), 53);
+    r[0] = ldexp(odd_of_bits(random, x_bits), -(x_bits + 1));
+    r[1] = ldexp(odd_of_bits(random, y_bits), -(width / 2 + 2));
+    r[2] = ldexp(odd_of_bits(random, std::min(width, 20)), -(width + 1));
+}
+
+// The 48 signed permutations of r: all on the sphere of radius |r| about the origin.
+std::vector<Point> signed_permutations(const double r[3]) {
+    static const int ORDERS[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    std::vector<Point> points;
+    for (const auto& order : ORDERS)
+        for (int signs = 0; signs < 8; ++signs) {
+            Point p;
+            for (int k = 0; k < 3; ++k) p.c[k] = (signs >> k & 1) ? -r[order[k]] : r[order[k]];
+            points.push_back(p);
+        }
+    return points;
+}
+
+// n distinct points drawn from `set`.
+void draw_distinct(Random& random, const std::vector<Point>& set, int n, Point* out) {
+    do {
+        for (int i = 0; i < n; ++i) out[i] = set[random.next() % set.size()];
+    } while (!distinct(out, n));
+}
+
+// insphere_sos from its definition, on the reference determinants: the exact sign, else the lift
+// cofactor of the lexicographically smallest point whose cofactor is not zero.
+int reference_insphere_sos(const Point* p) {
+    const int exact = reference_insphere(p[0], p[1], p[2], p[3], p[4]);
+    if (exact != 0) return exact;
+    const double* points[5] = {p[0], p[1], p[2], p[3], p[4]};
+    int rank[5];
+    ranks(points, 5, rank);
+    for (int r = 0; r < 5; ++r) {
+        const int i = static_cast<int>(std::find(rank, rank + 5, r) - rank);
+        const double* other[4];
+        for (int j = 0, k = 0; j < 5; ++j)
+            if (j != i) other[k++] = points[j];
+        const int orientation = reference_orient3d(other[0], other[1], other[2], other[3]);
+        if (orientation != 0) return i % 2 == 0 ? -orientation : orientation;
     }
-    return true;
+    return 0;
 }
 
-Big big_sum(const double* e, int n, int scale) {
-    Big total = big(0);
-    for (int i = 0; i < n; ++i) total = total + fixed(e[i], scale);
-    return total;
+// The axis of a coordinate of p equal to +-z, the finest component of a wide_vector: moving it by its
+// grain keeps it exact.
+int finest_axis(const Point& p, double z) {
+    for (int k = 0; k < 3; ++k)
+        if (fabs(p.c[k]) == z) return k;
+    return -1;
 }
 
-bool equal(const Big& a, const Big& b) { return sign(a - b) == 0; }
+} // namespace
 
-TEST_CASE("expansion arithmetic is exact") {
-    Random random(12);
-    // Full significands over a wide range of exponents (multiples of 2^-113), so that most roundings matter.
-    auto value = [&]() { return ldexp(random.unit(), -random.integer(0, 60)); };
+TEST_CASE("wide integers: sums, differences and signed products agree with the reference") {
+    Random random(18);
+    for (int trial = 0; trial < 3000; ++trial) {
+        check_wide_arithmetic<1, 1>(random);
+        check_wide_arithmetic<1, 2>(random);
+        check_wide_arithmetic<2, 1>(random);
+        check_wide_arithmetic<2, 3>(random);
+        check_wide_arithmetic<3, 2>(random);
+        check_wide_arithmetic<4, 4>(random);
+    }
+}
+
+TEST_CASE("the portable limb operations agree with the reference") {
+    Random random(19);
+    const Big two_to_64 = power_of_two(64);
     for (int trial = 0; trial < 20000; ++trial) {
-        const double a = value(), b = value(), c = value(), d = value();
-        double hi, lo;
-        expansion::two_product(a, b, hi, lo);
-        REQUIRE(hi == a * b);
-        REQUIRE(equal((fixed(hi, 240) + fixed(lo, 240)), fixed(a, 120) * fixed(b, 120)));
-        expansion::two_sum(a, b, hi, lo);
-        REQUIRE(hi == a + b);
-        REQUIRE(equal(fixed(hi) + fixed(lo), fixed(a) + fixed(b)));
+        uint64_t x[4];
+        for (uint64_t& value : x) {
+            const uint64_t choice = random.next() % 8;
+            value = choice == 0 ? 0 : choice == 1 ? ~uint64_t(0) : random.next();
+        }
+        const uint64_t carry_in = random.next() & 1;
+        uint64_t carry = carry_in, carry_portable = carry_in;
+        const uint64_t sum = wide::add(x[0], x[1], carry), sum_portable = wide::portable::add(x[0], x[1], carry_portable);
+        REQUIRE(equal(unsigned_big(sum) + unsigned_big(carry) * two_to_64,
+                      unsigned_big(x[0]) + unsigned_big(x[1]) + unsigned_big(carry_in)));
+        REQUIRE((sum_portable == sum && carry_portable == carry));
 
-        double h4[4];
-        const int n4 = expansion::product_difference(a, b, c, d, h4);
-        REQUIRE(well_formed(h4, n4));
-        REQUIRE(equal(big_sum(h4, n4, 240), fixed(a) * fixed(b) - fixed(c) * fixed(d)));
+        uint64_t borrow = carry_in, borrow_portable = carry_in;
+        const uint64_t difference = wide::subtract(x[0], x[1], borrow);
+        const uint64_t difference_portable = wide::portable::subtract(x[0], x[1], borrow_portable);
+        REQUIRE(equal(unsigned_big(difference) - unsigned_big(borrow) * two_to_64,
+                      unsigned_big(x[0]) - unsigned_big(x[1]) - unsigned_big(carry_in)));
+        REQUIRE((difference_portable == difference && borrow_portable == borrow));
 
-        double h6[6];
-        const int n6 = expansion::squared_norm(a, b, c, h6);
-        REQUIRE(well_formed(h6, n6));
-        REQUIRE(equal(big_sum(h6, n6, 240), fixed(a) * fixed(a) + fixed(b) * fixed(b) + fixed(c) * fixed(c)));
-
-        // (a b - c d) * (a^2 + b^2 + c^2) through scale, sum and the accumulator.
-        double scaled[8];
-        const int n_scaled = expansion::scale(h4, n4, d, scaled);
-        REQUIRE(well_formed(scaled, n_scaled));
-        REQUIRE(equal(big_sum(scaled, n_scaled, 360), (fixed(a) * fixed(b) - fixed(c) * fixed(d)) * fixed(d)));
-        double summed[12];
-        const int n_summed = expansion::sum(h4, n4, h6, n6, summed);
-        REQUIRE(well_formed(summed, n_summed));
-        REQUIRE(equal(big_sum(summed, n_summed, 240), big_sum(h4, n4, 240) + big_sum(h6, n6, 240)));
-        expansion::Accumulator<48> product;
-        product.add_product<8>(h4, n4, h6, n6);
-        const Big expected = big_sum(h4, n4, 240) * big_sum(h6, n6, 240);
-        REQUIRE(product.sign() == sign(expected));
+        uint64_t hi = 0, hi_portable = 0;
+        const uint64_t lo = wide::multiply_add(x[0], x[1], x[2], x[3], hi);
+        const uint64_t lo_portable = wide::portable::multiply_add(x[0], x[1], x[2], x[3], hi_portable);
+        REQUIRE(equal(unsigned_big(lo) + unsigned_big(hi) * two_to_64,
+                      unsigned_big(x[0]) * unsigned_big(x[1]) + unsigned_big(x[2]) + unsigned_big(x[3])));
+        REQUIRE((lo_portable == lo && hi_portable == hi));
     }
-    double zero[1] = {0};
-    CHECK(expansion::sign(zero, 1) == 0);
-    expansion::Accumulator<4> empty;
-    CHECK(empty.sign() == 0);
+}
+
+TEST_CASE("decompose and scaled give a double's exact multiple of a power of two") {
+    Random random(20);
+    for (int trial = 0; trial < 20000; ++trial) {
+        const double magnitude = ldexp(odd_of_bits(random, random.integer(1, 53)), -random.integer(0, 200));
+        const double x = trial % 50 == 0 ? (trial % 100 == 0 ? 0.0 : -0.0) : (random.next() & 1 ? -magnitude : magnitude);
+        const wide::Binary b = wide::decompose(x);
+        if (x == 0) {
+            REQUIRE(b.odd == 0);
+            continue;
+        }
+        REQUIRE(b.odd % 2 == 1);
+        REQUIRE((b.negative ? -1.0 : 1.0) * ldexp(static_cast<double>(b.odd), b.exponent) == x);
+        const int unit = b.exponent - random.integer(0, 150);
+        REQUIRE(equal(big_of(wide::scaled<1>(b, unit)), truncated(fixed(x, -unit), 1)));
+        REQUIRE(equal(big_of(wide::scaled<4>(b, unit)), truncated(fixed(x, -unit), 4)));
+    }
+}
+
+TEST_CASE("exactly cospherical points of every width: zero, and one grain off decided exactly") {
+    Random random(21);
+    PredicateCounters counters;
+    int decided = 0;
+    for (int width = 1; width <= 198; ++width) {
+        double r[3];
+        wide_vector(random, width, r);
+        const std::vector<Point> sphere = signed_permutations(r);
+        const double grain = ldexp(1.0, -(width + 1));
+        for (int trial = 0; trial < 12; ++trial) {
+            Point p[5];
+            draw_distinct(random, sphere, 5, p);
+            REQUIRE(insphere_exact(p[0], p[1], p[2], p[3], p[4], counters) == 0);
+            REQUIRE(reference_insphere(p[0], p[1], p[2], p[3], p[4]) == 0);
+            const int o = orient3d(p[0], p[1], p[2], p[3], counters);
+            REQUIRE(o == reference_orient3d(p[0], p[1], p[2], p[3]));
+            REQUIRE(insphere_sos(p[0], p[1], p[2], p[3], p[4], counters) == reference_insphere_sos(p));
+            if (o == 0) continue;
+            // One grain away from the centre leaves the sphere: outside, so the sign is -o; towards it, o.
+            const int axis = finest_axis(p[4], r[2]);
+            REQUIRE(axis >= 0);
+            for (const bool outward : {true, false}) {
+                Point moved = p[4];
+                moved.c[axis] += ((moved.c[axis] > 0) == outward ? 1 : -1) * grain;
+                const int s = insphere_exact(p[0], p[1], p[2], p[3], moved, counters);
+                REQUIRE(s == (outward ? -o : o));
+                REQUIRE(s == reference_insphere(p[0], p[1], p[2], p[3], moved));
+                ++decided;
+            }
+        }
+    }
+    CHECK(decided > 2000);
+}
+
+TEST_CASE("exactly coplanar points of every width: zero, and one grain off decided exactly") {
+    Random random(22);
+    PredicateCounters counters;
+    int decided = 0;
+    for (int width = 1; width <= 198; ++width) {
+        double r[3];
+        wide_vector(random, width, r);
+        // On the plane x = y (or y = z, or z = x): every coordinate value is +-x, +-y or +-z.
+        const int plane = width % 3;
+        std::vector<Point> points;
+        for (int i = 0; i < 6; ++i)
+            for (int j = 0; j < 6; ++j) {
+                const double same = (i % 2 ? -1 : 1) * r[i / 2], other = (j % 2 ? -1 : 1) * r[j / 2];
+                Point p;
+                p.c[plane] = p.c[(plane + 1) % 3] = same;
+                p.c[(plane + 2) % 3] = other;
+                points.push_back(p);
+            }
+        const double grain = ldexp(1.0, -(width + 1));
+        for (int trial = 0; trial < 12; ++trial) {
+            Point p[4];
+            draw_distinct(random, points, 4, p);
+            REQUIRE(orient3d(p[0], p[1], p[2], p[3], counters) == 0);
+            // One grain off the plane: moves one of the two equal coordinates, where they are +-z.
+            const int axis = plane;
+            if (fabs(p[3].c[axis]) != r[2]) continue;
+            for (const double step : {grain, -grain}) {
+                Point moved = p[3];
+                moved.c[axis] += step;
+                const int s = orient3d(p[0], p[1], p[2], moved, counters);
+                REQUIRE(s == reference_orient3d(p[0], p[1], p[2], moved));
+                if (reference_orient3d(p[0], p[1], p[2], p[3]) == 0 && s != 0) ++decided;
+            }
+        }
+    }
+    CHECK(decided > 300);
+}
+
+TEST_CASE("exactly cocircular points of every width: incircle3d_sos is the limit of insphere_sos, one grain off decides") {
+    Random random(23);
+    PredicateCounters counters;
+    int checked = 0, decided = 0;
+    for (int width = 1; width <= 198; ++width) {
+        double r[3];
+        wide_vector(random, width, r);
+        // The circle of radius |(x, z)| in the plane through the origin normal to one axis.
+        const int normal = width % 3, u = (normal + 1) % 3, v = (normal + 2) % 3;
+        std::vector<Point> circle;
+        for (int swap = 0; swap < 2; ++swap)
+            for (int signs = 0; signs < 4; ++signs) {
+                Point p;
+                p.c[normal] = 0;
+                p.c[u] = (signs & 1 ? -1 : 1) * (swap ? r[2] : r[0]);
+                p.c[v] = (signs & 2 ? -1 : 1) * (swap ? r[0] : r[2]);
+                circle.push_back(p);
+            }
+        const double grain = ldexp(1.0, -(width + 1));
+        for (int trial = 0; trial < 12; ++trial) {
+            Point p[4];
+            draw_distinct(random, circle, 4, p);
+            const int answer = incircle3d_sos(p[0], p[1], p[2], p[3], counters);
+            REQUIRE(answer != 0);  // three distinct points of a circle are never collinear
+            Point q;
+            q.c[normal] = trial % 2 ? 0.25 : -0.375;
+            q.c[u] = q.c[v] = 0.125;
+            const int o = orient3d(p[0], p[1], p[2], q, counters);
+            REQUIRE(o != 0);
+            REQUIRE(insphere_exact(p[0], p[1], p[2], q, p[3], counters) == 0);
+            REQUIRE(insphere_sos(p[0], p[1], p[2], q, p[3], counters) * o == answer);
+            ++checked;
+            const int axis = finest_axis(p[3], r[2]);
+            REQUIRE(axis >= 0);
+            for (const bool outward : {true, false}) {
+                Point moved = p[3];
+                moved.c[axis] += ((moved.c[axis] > 0) == outward ? 1 : -1) * grain;
+                REQUIRE(incircle3d_sos(p[0], p[1], p[2], moved, counters) == (outward ? -1 : 1));
+                REQUIRE(reference_incircle3d(p[0], p[1], p[2], moved) == (outward ? -1 : 1));
+                ++decided;
+            }
+        }
+    }
+    CHECK(checked > 2000);
+    CHECK(decided == 2 * checked);
+}
+
+TEST_CASE("the exact stage is scale-free: signs and cofactors unchanged from 2^-1000 to 2^900 times the points") {
+    // The radius-5 sphere (all cospherical, many coplanar) and a small lattice, so that zeros are common.
+    std::vector<Point> points = radius5_sphere();
+    Random random(25);
+    for (int i = 0; i < 20; ++i) points.push_back(lattice_point(random, -3, 3));
+    int zeros = 0;
+    for (int trial = 0; trial < 1500; ++trial) {
+        Point p[5];
+        for (Point& q : p) q = points[random.next() % points.size()];
+        int orientations[5] = {9, 9, 9, 9, 9}, circle[4] = {9, 9, 9, 9};
+        const int o = exact::orient3d(p[0], p[1], p[2], p[3]);
+        const int s = exact::insphere(p[0], p[1], p[2], p[3], p[4], orientations);
+        const int c = exact::incircle_lifted(p[0], p[1], p[2], p[3], 0, 2, circle);
+        const int o2 = exact::orient2d(p[0], p[1], p[2], 1, 2);
+        REQUIRE(o == reference_orient3d(p[0], p[1], p[2], p[3]));
+        REQUIRE(s == reference_insphere(p[0], p[1], p[2], p[3], p[4]));
+        REQUIRE(c == reference_incircle_lifted(p[0], p[1], p[2], p[3], 0, 2));
+        REQUIRE(o2 == reference_orient2d(p[0], p[1], p[2], 1, 2));
+        zeros += s == 0;
+        for (const int exponent : {-1000, -600, -200, -60, 60, 200, 600, 900}) {
+            CAPTURE(exponent);
+            Point q[5];
+            for (int i = 0; i < 5; ++i)
+                for (int k = 0; k < 3; ++k) q[i].c[k] = ldexp(p[i].c[k], exponent);
+            int scaled_orientations[5] = {9, 9, 9, 9, 9}, scaled_circle[4] = {9, 9, 9, 9};
+            REQUIRE(exact::orient3d(q[0], q[1], q[2], q[3]) == o);
+            REQUIRE(exact::insphere(q[0], q[1], q[2], q[3], q[4], scaled_orientations) == s);
+            REQUIRE(exact::incircle_lifted(q[0], q[1], q[2], q[3], 0, 2, scaled_circle) == c);
+            REQUIRE(exact::orient2d(q[0], q[1], q[2], 1, 2) == o2);
+            if (s == 0)
+                for (int i = 0; i < 5; ++i) REQUIRE(scaled_orientations[i] == orientations[i]);
+            if (c == 0)
+                for (int i = 0; i < 4; ++i) REQUIRE(scaled_circle[i] == circle[i]);
+        }
+    }
+    CHECK(zeros > 300);
+}
+
+TEST_CASE("the exact stage at the limits of each of its integer types") {
+    // Corners of the box [-x, x] x [-y, y] x [-z, z] beside q = (g, 0, 0): the differences to q reach
+    // 2^width - 1 units of g, the most the integer type chosen for that width must hold, and their
+    // determinants come near the largest the type was sized for. The box's eight corners are cospherical
+    // and each face's four cocircular; q lies inside both. Unequal sides keep wrapped values from
+    // cancelling by accident.
+    for (const int width : {5, 11, 12, 13, 40, 61, 62, 63, 64, 100, 125, 126, 127, 128, 129, 200, 253, 254}) {
+        for (const double depth : {0.375, 0.6875, 0.9375}) {
+            CAPTURE(width);
+            CAPTURE(depth);
+            const double g = ldexp(1.0, -width);
+            const double ulp = width <= 54 ? g : ldexp(1.0, -53);
+            const double x = 1 - 2 * ulp, y = 1 - 6 * ulp, z = depth - ulp;  // x + g < 1 = 2^top
+            const double a[3] = {x, y, z}, b[3] = {x, -y, -z}, c[3] = {-x, y, -z}, d[3] = {-x, -y, z};
+            const double q[3] = {g, 0, 0}, corner[3] = {-x, -y, -z}, face_corner[3] = {x, -y, z};
+            REQUIRE(exact::orient3d(a, b, c, d) == 1);
+            REQUIRE(exact::orient3d(b, a, c, d) == -1);
+            REQUIRE(exact::orient3d(a, b, c, q) == 1);  // q is on the side of the plane abc where d is
+            int orientations[5];
+            REQUIRE(exact::insphere(a, b, c, d, q, orientations) == 1);
+            REQUIRE(exact::insphere(b, a, c, d, q, orientations) == -1);
+            REQUIRE(exact::insphere(a, b, c, d, corner, orientations) == 0);
+            for (int i = 0; i < 5; ++i) {
+                const double* points[5] = {a, b, c, d, corner};
+                const double* other[4];
+                for (int j = 0, k = 0; j < 5; ++j)
+                    if (j != i) other[k++] = points[j];
+                REQUIRE(orientations[i] == exact::orient3d(other[0], other[1], other[2], other[3]));
+            }
+            // The face at x: (x, y, z), (x, -y, -z), (x, y, -z) and (x, -y, z); q moved onto it stays inside.
+            const double f1[3] = {x, y, z}, f2[3] = {x, -y, -z}, f3[3] = {x, y, -z}, on_face[3] = {x, g, 0};
+            const int turn = exact::orient2d(f1, f2, f3, 1, 2);
+            REQUIRE(turn != 0);
+            REQUIRE(exact::incircle_lifted(f1, f2, f3, on_face, 1, 2, orientations) == turn);
+            REQUIRE(exact::incircle_lifted(f1, f2, f3, face_corner, 1, 2, orientations) == 0);
+        }
+    }
+}
+
+TEST_CASE("tetrahedralizations with exactly cospherical, cocircular and coplanar sets 2^-20 to 2^-150 small are Delaunay") {
+    // Beside a unit cloud, so that the conditioned coordinates of the small sets span up to about 190 bits.
+    const int scales[][2] = {{20, 40}, {60, 100}, {100, 80}, {150, 30}, {180, 8}};  // (2^-k, width)
+    Random random(24);
+    for (const auto& scale_and_width : scales) {
+        const int k = scale_and_width[0], width = scale_and_width[1];
+        CAPTURE(k);
+        std::vector<double> xyz;
+        for (int i = 0; i < 24; ++i) xyz.insert(xyz.end(), {random.unit(), random.unit(), random.unit()});
+        double r[3];
+        wide_vector(random, width, r);
+        const std::vector<Point> sphere = signed_permutations(r);
+        for (size_t i = 0; i < sphere.size(); i += 2)
+            for (int c = 0; c < 3; ++c) xyz.push_back(ldexp(sphere[i].c[c], -k));
+        // A circle and a 3x3 grid in the plane z = 2^-k r_x (exactly), off the sphere's centre.
+        for (int signs = 0; signs < 4; ++signs)
+            xyz.insert(xyz.end(), {ldexp((signs & 1 ? -1 : 1) * r[0], -k), ldexp((signs & 2 ? -1 : 1) * r[2], -k), ldexp(r[0], -k)});
+        for (int i = -1; i <= 1; ++i)
+            for (int j = -1; j <= 1; ++j) xyz.insert(xyz.end(), {ldexp(i * r[2], -k), ldexp(j * r[1], -k), ldexp(r[0], -k)});
+
+        const dbrg_params params = dbrg_test::test_params();
+        Context context(params);
+        ConditionedPoints points(context.memory);
+        REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
+        Tetrahedralization tets(context.memory);
+        REQUIRE(tets.build(points.coordinates.data(), points.size(), context) == DBRG_OK);
+        char message[256];
+        REQUIRE_MESSAGE(tets.validate(message, sizeof message), message);
+        // No point lies strictly inside the circumsphere of a tetrahedron, by the reference's determinants.
+        int strictly_inside = 0, on_sphere = 0;
+        for (uint32_t t = 0; t < tets.tet_slots(); ++t) {
+            if (tets.tet_is_free(t) || !tets.tet_is_finite(t)) continue;
+            const double* corner[4];
+            for (uint32_t lv = 0; lv < 4; ++lv) corner[lv] = points.point(tets.tet_vertex(t, lv));
+            REQUIRE(reference_orient3d(corner[0], corner[1], corner[2], corner[3]) == 1);
+            for (uint32_t v = 0; v < points.size(); ++v) {
+                if (tets.tet_local_index(t, v) < 4) continue;
+                const int s = reference_insphere(corner[0], corner[1], corner[2], corner[3], points.point(v));
+                strictly_inside += s > 0;
+                on_sphere += s == 0;
+            }
+        }
+        CHECK(strictly_inside == 0);
+        CHECK(on_sphere > 0);
+    }
 }
 
 TEST_CASE("counters count calls, filter failures and perturbations") {

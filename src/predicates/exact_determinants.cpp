@@ -1,216 +1,275 @@
-// Exact determinant signs by expansion arithmetic: a short evaluation on the translated points when every
-// coordinate difference is exact in floating point (true of grids and most degenerate inputs), otherwise
-// a longer one on the raw coordinates, which needs no differences at all.
+// Exact determinant signs in fixed-width integer arithmetic. Each determinant is a polynomial in the
+// coordinate differences p - q, which are all multiples of 2^unit for some power of two, so it is an
+// integer times a power of two and has the sign of that integer. The integer is evaluated exactly, with
+// no rounding to reason about and the same steps whatever the values, so exact zeros and near-ties cost
+// the same, in the cheapest type that holds it: machine words for lattice-like points, one 64-bit limb per
+// difference for the doubles of a generic point cloud, two or four for coordinates of very unequal size.
 #include "predicates/exact_determinants.h"
 
-#include "predicates/expansion.h"
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+#include "predicates/wide_integer.h"
 
 namespace dbrg {
 namespace exact {
 namespace {
 
-using expansion::Accumulator;
-using expansion::negate;
-using expansion::product_difference;
-using expansion::scale;
-using expansion::squared_norm;
-using expansion::sum;
+using wide::Binary;
+using wide::Int;
 
-// out = p - q rounded; returns whether all three differences were exact.
-bool exact_difference(const double* p, const double* q, double* out) {
-    double tail[3];
-    for (int k = 0; k < 3; ++k) expansion::two_diff(p[k], q[k], out[k], tail[k]);
-    return tail[0] == 0 && tail[1] == 0 && tail[2] == 0;
+uint64_t bits_of(double x) {
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    return bits;
 }
 
-// h (24) = det[p; q; r], expanded along the z column.
-int det3(const double* p, const double* q, const double* r, double* h) {
-    double qr[4], pr[4], pq[4];
-    const int n_qr = product_difference(q[0], r[1], r[0], q[1], qr);
-    const int n_pr = product_difference(p[0], r[1], r[0], p[1], pr);
-    const int n_pq = product_difference(p[0], q[1], q[0], p[1], pq);
-    double term1[8], term2[8], term3[8], term12[16];
-    const int n1 = scale(qr, n_qr, p[2], term1);
-    const int n2 = scale(pr, n_pr, -q[2], term2);
-    const int n3 = scale(pq, n_pq, r[2], term3);
-    const int n12 = sum(term1, n1, term2, n2, term12);
-    return sum(term12, n12, term3, n3, h);
+// The least e with x < 2^e, for normal x > 0 (an e with x < 2^e for subnormal x).
+int exponent_above(double x) {
+    const int biased = static_cast<int>(bits_of(x) >> 52) & 0x7ff;
+    return (biased != 0 ? biased : 1) - 1022;
 }
 
-// The raw-coordinate determinants of up to five points, built from shared parts: the 2x2 xy-minors of
-// each pair of points, then the 3x3 determinants of each triple (expanded along z over those minors, as
-// det3), then the 4x4 ones of each quadruple as alternating sums of 3x3 ones. Computed once each, where
-// evaluating every 4x4 determinant on its own computed each 2x2 minor six times and each 3x3 one twice.
-class RawMinors {
-public:
-    RawMinors(const double* const* points, int n) : points_(points) {
-        for (int i = 0; i < n; ++i)
-            for (int j = i + 1; j < n; ++j)
-                pair_length_[i][j] = product_difference(points[i][0], points[j][1], points[j][0], points[i][1], pair_[i][j]);
-        int count = 0;
-        for (int i = 0; i < n; ++i)
-            for (int j = i + 1; j < n; ++j)
-                for (int k = j + 1; k < n; ++k) {
-                    index_[i][j][k] = static_cast<signed char>(count);
-                    triple_length_[count] = triple(i, j, k, triple_[count]);
-                    ++count;
-                }
-    }
+// 2^e as a double, for -1022 <= e <= 1023.
+double power_of_two(int e) {
+    const uint64_t bits = static_cast<uint64_t>(e + 1023) << 52;
+    double x;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
 
-    // h (96) = det of the rows (p, 1) for the points i < j < k < l, which equals det[pi-pl; pj-pl; pk-pl].
-    int quadruple(int i, int j, int k, int l, double* h) const {
-        const int ijk = index_[i][j][k], ijl = index_[i][j][l], ikl = index_[i][k][l], jkl = index_[j][k][l];
-        double negated_ijl[24], negated_jkl[24], left[48], right[48];
-        const int n_ijl = negate(triple_[ijl], triple_length_[ijl], negated_ijl);
-        const int n_jkl = negate(triple_[jkl], triple_length_[jkl], negated_jkl);
-        const int n_left = sum(triple_[ijk], triple_length_[ijk], negated_ijl, n_ijl, left);
-        const int n_right = sum(triple_[ikl], triple_length_[ikl], negated_jkl, n_jkl, right);
-        return sum(left, n_left, right, n_right, h);
-    }
-
-private:
-    // h (24) = det[p_i; p_j; p_k], expanded along the z column as det3 does.
-    int triple(int i, int j, int k, double* h) const {
-        double term1[8], term2[8], term3[8], term12[16];
-        const int n1 = scale(pair_[j][k], pair_length_[j][k], points_[i][2], term1);
-        const int n2 = scale(pair_[i][k], pair_length_[i][k], -points_[j][2], term2);
-        const int n3 = scale(pair_[i][j], pair_length_[i][j], points_[k][2], term3);
-        const int n12 = sum(term1, n1, term2, n2, term12);
-        return sum(term12, n12, term3, n3, h);
-    }
-
-    const double* const* points_;
-    double pair_[5][5][4];
-    int pair_length_[5][5];
-    signed char index_[5][5][5];  // where triple i < j < k is kept
-    double triple_[10][24];
-    int triple_length_[10];
+// The differences p_i - p_last of one call's points, each exactly as hi + lo (Knuth's two-difference;
+// lo is 0 whenever the rounded difference is exact, as it is for nearby points).
+template <int Rows>
+struct Differences {
+    double hi[Rows][3];
+    double lo[Rows][3];
+    int top;     // every |p_i - p_last| is below 2^top (0 when all are 0)
+    bool tails;  // some lo is not 0: some difference is not a double
 };
 
-// h (96) = det of the rows (p, 1), (q, 1), (r, 1), (s, 1), which equals det[p-s; q-s; r-s].
-int orient3d_raw(const double* p, const double* q, const double* r, const double* s, double* h) {
-    const double* points[4] = {p, q, r, s};
-    const RawMinors minors(points, 4);
-    return minors.quadruple(0, 1, 2, 3, h);
-}
-
-// h (4) = p[u] * q[v] - q[u] * p[v].
-int minor2(const double* p, const double* q, int u, int v, double* h) {
-    return product_difference(p[u], q[v], q[u], p[v], h);
-}
-
-// h (12) = det of the rows (p[u], p[v], 1), (q[u], q[v], 1), (r[u], r[v], 1).
-int orient2d_raw(const double* p, const double* q, const double* r, int u, int v, double* h) {
-    double qr[4], pr[4], pq[4], left[8];
-    const int n_qr = minor2(q, r, u, v, qr);
-    const int n_pr = minor2(p, r, u, v, pr);
-    const int n_pq = minor2(p, q, u, v, pq);
-    negate(pr, n_pr, pr);
-    const int n_left = sum(qr, n_qr, pr, n_pr, left);
-    return sum(left, n_left, pq, n_pq, h);
-}
-
-// Rows (r_i, |r_i|^2) for the four translated points, expanded along the lift column.
-int insphere_translated(const double (*rows)[3]) {
-    Accumulator<4 * 6 * 48> total;
-    for (int i = 0; i < 4; ++i) {
-        const double* other[3];
-        for (int j = 0, k = 0; j < 4; ++j)
-            if (j != i) other[k++] = rows[j];
-        double minor[24], lift[6];
-        const int n_minor = det3(other[0], other[1], other[2], minor);
-        if (i % 2 == 0) negate(minor, n_minor, minor);
-        const int n_lift = squared_norm(rows[i][0], rows[i][1], rows[i][2], lift);
-        total.add_product<48>(minor, n_minor, lift, n_lift);
+template <int Points>
+[[gnu::always_inline]] inline Differences<Points - 1> differences(const double* const* points) {
+    Differences<Points - 1> d;
+    double largest = 0;
+    uint64_t tail_bits = 0;
+    for (int i = 0; i < Points - 1; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double a = points[i][k], b = points[Points - 1][k];
+            const double hi = a - b, b_virtual = a - hi, a_virtual = hi + b_virtual;
+            const double lo = (a - a_virtual) + (b_virtual - b);
+            d.hi[i][k] = hi;
+            d.lo[i][k] = lo;
+            tail_bits |= bits_of(lo) << 1;  // not the sign: -0 is 0
+            largest = fabs(hi) > largest ? fabs(hi) : largest;
+        }
     }
-    return total.sign();
+    d.tails = tail_bits != 0;
+    // Rounding is monotone and 2^top is a double: a rounded difference below 2^top is one of an exact
+    // difference below it.
+    d.top = largest == 0 ? 0 : exponent_above(largest);
+    return d;
 }
 
-// Rows (p, |p|^2, 1) for the five points, expanded along the lift column. Its two buffers take about
-// 92 KB of stack; only inputs whose differences are inexact and whose filter failed get here.
-int insphere_raw(const double* const* points) {
-    const RawMinors minors(points, 5);
-    Accumulator<5 * 6 * 192> total;
-    for (int i = 0; i < 5; ++i) {
-        int other[4];
-        for (int j = 0, k = 0; j < 5; ++j)
-            if (j != i) other[k++] = j;
-        double minor[96], lift[6];
-        const int n_minor = minors.quadruple(other[0], other[1], other[2], other[3], minor);
-        if (i % 2 == 0) negate(minor, n_minor, minor);
-        const int n_lift = squared_norm(points[i][0], points[i][1], points[i][2], lift);
-        total.add_product<192>(minor, n_minor, lift, n_lift);
+// rows = the differences / 2^(top - 11) as machine words, when each is a multiple of that power of two
+// (then each is below 2^11). Returns false, rows unspecified, when one is not.
+template <int Rows>
+[[gnu::always_inline]] inline bool machine_word_rows(const Differences<Rows>& d, int64_t (*rows)[3]) {
+    const int scale_exponent = 11 - d.top;
+    if (d.tails || scale_exponent < -1022 || scale_exponent > 1023) return false;  // tails span over 53 bits
+    const double scale = power_of_two(scale_exponent), round = 0x1.8p52;
+    // (v + round) - round is v rounded to an integer, for |v| < 2^51: v is one when the two are equal,
+    // and then the low bits of v + round are v's. The differences' bits are ORed (x - x is +0, never -0).
+    uint64_t fractions = 0;
+    for (int i = 0; i < Rows; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double v = d.hi[i][k] * scale, shifted = v + round, integer = shifted - round;
+            fractions |= bits_of(integer - v);
+            rows[i][k] = static_cast<int64_t>(bits_of(shifted) - bits_of(round));
+        }
     }
-    return total.sign();
+    return fractions == 0;
 }
 
-// Rows (r_i[u], r_i[v], |r_i|^2) for the three translated points, expanded along the lift column.
-int incircle_translated(const double (*rows)[3], int u, int v) {
-    Accumulator<3 * 6 * 8> total;
-    for (int i = 0; i < 3; ++i) {
-        const double* other[2];
-        for (int j = 0, k = 0; j < 3; ++j)
-            if (j != i) other[k++] = rows[j];
-        double minor[4], lift[6];
-        const int n_minor = minor2(other[0], other[1], u, v, minor);
-        if (i % 2 == 1) negate(minor, n_minor, minor);
-        const int n_lift = squared_norm(rows[i][0], rows[i][1], rows[i][2], lift);
-        total.add_product<8>(minor, n_minor, lift, n_lift);
+// rows = the differences / 2^(top - 62) as one-limb integers, when each is a multiple of that power of two
+// (then each is below 2^62, one limb). Returns false, rows unspecified, when one is not.
+template <int Rows>
+[[gnu::always_inline]] inline bool one_limb_rows(const Differences<Rows>& d, Int<1> (*rows)[3]) {
+    const int scale_exponent = 62 - d.top;
+    if (scale_exponent < -1022 || scale_exponent > 1023) return false;
+    // Exact products: below 2^62, and, as the differences are multiples of 2^(top - 254), not below 2^-192.
+    const double scale = power_of_two(scale_exponent);
+    bool integral = true;
+    for (int i = 0; i < Rows; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double hi = d.hi[i][k] * scale;  // below 2^62
+            const int64_t hi_integer = static_cast<int64_t>(hi);
+            integral &= static_cast<double>(hi_integer) == hi;
+            int64_t lo_integer = 0;
+            if (d.tails) {
+                const double lo = d.lo[i][k] * scale;
+                lo_integer = static_cast<int64_t>(lo);
+                integral &= static_cast<double>(lo_integer) == lo;
+            }
+            rows[i][k].limb[0] = static_cast<uint64_t>(hi_integer + lo_integer);
+        }
     }
-    return total.sign();
+    return integral;
 }
 
-// Rows (p[u], p[v], |p|^2, 1) for the four points, expanded along the lift column.
-int incircle_raw(const double* const* points, int u, int v) {
-    Accumulator<4 * 6 * 24> total;
-    for (int i = 0; i < 4; ++i) {
-        const double* other[3];
-        for (int j = 0, k = 0; j < 4; ++j)
-            if (j != i) other[k++] = points[j];
-        double minor[12], lift[6];
-        const int n_minor = orient2d_raw(other[0], other[1], other[2], u, v, minor);
-        if (i % 2 == 1) negate(minor, n_minor, minor);
-        const int n_lift = squared_norm(points[i][0], points[i][1], points[i][2], lift);
-        total.add_product<24>(minor, n_minor, lift, n_lift);
+// The finest binary grain among the differences: every one is a multiple of 2^unit.
+template <int Rows>
+int finest_unit(const Differences<Rows>& d) {
+    int unit = wide::ZERO_EXPONENT;
+    for (int i = 0; i < Rows; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const int hi = wide::decompose(d.hi[i][k]).exponent, lo = wide::decompose(d.lo[i][k]).exponent;
+            unit = hi < unit ? hi : unit;
+            unit = lo < unit ? lo : unit;
+        }
     }
-    return total.sign();
+    return unit;
+}
+
+// rows = the differences / 2^unit in K limbs each.
+template <int K, int Rows>
+void rows_on_grid(const Differences<Rows>& d, int unit, Int<K> (*rows)[3]) {
+    for (int i = 0; i < Rows; ++i)
+        for (int k = 0; k < 3; ++k)
+            rows[i][k] = wide::scaled<K>(wide::decompose(d.hi[i][k]), unit) +
+                         wide::scaled<K>(wide::decompose(d.lo[i][k]), unit);
+}
+
+// Runs evaluate(rows) on the differences as integers of the cheapest type in which their products keep
+// every value of the evaluation in range. The largest values are insphere's: for differences below 2^w
+// they are below 4 * 2^(2 w + 2) * 3 * 2^(2 w + 1) * 2^w < 2^(5 w + 7), and each smaller determinant is as
+// far within its own type. So one machine word holds every value for w <= 11 (lattices of up to 2048
+// steps a side), and K limbs per difference, 5 K for the largest products, hold them for 64 K >= w + 2.
+// A call's w is the span from its finest grain to its largest difference: one limb for the doubles of
+// any one point cloud whose coordinates are of similar size, more for coordinates near 0 next to large ones.
+template <int Rows, class Evaluate>
+int evaluate_exactly(const Differences<Rows>& d, Evaluate evaluate) {
+    int64_t small[Rows][3];
+    if (machine_word_rows(d, small)) return evaluate(small);
+    Int<1> one[Rows][3];
+    if (one_limb_rows(d, one)) return evaluate(one);
+    const int unit = finest_unit(d), width = d.top - unit;
+    if (width <= 62) {
+        rows_on_grid(d, unit, one);
+        return evaluate(one);
+    }
+    if (width <= 126) {
+        Int<2> two[Rows][3];
+        rows_on_grid(d, unit, two);
+        return evaluate(two);
+    }
+    assert(width <= 254 && "the exact predicates need the coordinates of a call to span at most 254 bits");
+    Int<4> four[Rows][3];
+    rows_on_grid(d, unit, four);
+    return evaluate(four);
+}
+
+// The determinants below are written once for any of those integer types: products of Int<K> widen to
+// the limbs they need, products of machine words stay machine words.
+
+template <int K>
+int sign_of(const Int<K>& value) {
+    return wide::sign(value);
+}
+
+int sign_of(int64_t value) { return (value > 0) - (value < 0); }
+
+// p[u] q[v] - q[u] p[v].
+template <class Integer>
+[[gnu::always_inline]] inline auto minor2(const Integer* p, const Integer* q, int u, int v) {
+    return p[u] * q[v] - q[u] * p[v];
+}
+
+template <class Integer>
+[[gnu::always_inline]] inline auto squared_length(const Integer* p) {
+    return p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+}
+
+// det[p; q; r] expanded along z, given the xy-minors of its pairs.
+template <class Integer, class Minor>
+[[gnu::always_inline]] inline auto det3(const Integer* p, const Integer* q, const Integer* r, const Minor& qr,
+                                        const Minor& pr, const Minor& pq) {
+    return p[2] * qr - q[2] * pr + r[2] * pq;
+}
+
+template <class Integer>
+int orient3d_sign(const Integer (*rows)[3]) {
+    const auto bc = minor2(rows[1], rows[2], 0, 1), ac = minor2(rows[0], rows[2], 0, 1), ab = minor2(rows[0], rows[1], 0, 1);
+    return sign_of(det3(rows[0], rows[1], rows[2], bc, ac, ab));
+}
+
+// Expanded along the lift column, each 3x3 minor along z over the six xy-minors they share. Those minors
+// are orient3d of four of the points, e among them; the fifth orientation is their alternating sum
+// (the 4x4 determinant of the rows (p - e, 1) expanded along its last column).
+template <class Integer>
+int insphere_sign(const Integer (*rows)[3], int* orientations) {
+    const Integer *a = rows[0], *b = rows[1], *c = rows[2], *d = rows[3];
+    const auto ab = minor2(a, b, 0, 1), ac = minor2(a, c, 0, 1), ad = minor2(a, d, 0, 1);
+    const auto bc = minor2(b, c, 0, 1), bd = minor2(b, d, 0, 1), cd = minor2(c, d, 0, 1);
+    const auto abc = det3(a, b, c, bc, ac, ab), abd = det3(a, b, d, bd, ad, ab);
+    const auto acd = det3(a, c, d, cd, ad, ac), bcd = det3(b, c, d, cd, bd, bc);
+    const int sign = sign_of((squared_length(d) * abc - squared_length(c) * abd) +
+                             (squared_length(b) * acd - squared_length(a) * bcd));
+    if (sign == 0 && orientations != nullptr) {
+        orientations[0] = sign_of(bcd);
+        orientations[1] = sign_of(acd);
+        orientations[2] = sign_of(abd);
+        orientations[3] = sign_of(abc);
+        orientations[4] = sign_of(abc - abd + acd - bcd);
+    }
+    return sign;
+}
+
+// The same along the lift column, over the 2x2 minors, which are orient2d of three of the points.
+template <class Integer>
+int incircle_lifted_sign(const Integer (*rows)[3], int u, int v, int* orientations) {
+    const Integer *a = rows[0], *b = rows[1], *c = rows[2];
+    const auto ab = minor2(a, b, u, v), ac = minor2(a, c, u, v), bc = minor2(b, c, u, v);
+    const int sign = sign_of(squared_length(a) * bc - squared_length(b) * ac + squared_length(c) * ab);
+    if (sign == 0 && orientations != nullptr) {
+        orientations[0] = sign_of(bc);
+        orientations[1] = sign_of(ac);
+        orientations[2] = sign_of(ab);
+        orientations[3] = sign_of(ab - ac + bc);
+    }
+    return sign;
+}
+
+template <class Integer>
+int orient2d_sign(const Integer (*rows)[3], int u, int v) {
+    return sign_of(minor2(rows[0], rows[1], u, v));
 }
 
 } // namespace
 
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
-    double rows[3][3];
-    const bool exact_rows = exact_difference(a, d, rows[0]) && exact_difference(b, d, rows[1]) &&
-                            exact_difference(c, d, rows[2]);
-    if (exact_rows) {
-        double h[24];
-        return expansion::sign(h, det3(rows[0], rows[1], rows[2], h));
-    }
-    double h[96];
-    return expansion::sign(h, orient3d_raw(a, b, c, d, h));
-}
-
-int insphere(const double* a, const double* b, const double* c, const double* d, const double* e) {
-    double rows[4][3];
-    const bool exact_rows = exact_difference(a, e, rows[0]) && exact_difference(b, e, rows[1]) &&
-                            exact_difference(c, e, rows[2]) && exact_difference(d, e, rows[3]);
-    if (exact_rows) return insphere_translated(rows);
-    const double* points[5] = {a, b, c, d, e};
-    return insphere_raw(points);
-}
-
-int incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v) {
-    double rows[3][3];
-    const bool exact_rows = exact_difference(a, d, rows[0]) && exact_difference(b, d, rows[1]) &&
-                            exact_difference(c, d, rows[2]);
-    if (exact_rows) return incircle_translated(rows, u, v);
     const double* points[4] = {a, b, c, d};
-    return incircle_raw(points, u, v);
+    return evaluate_exactly(differences<4>(points), [](const auto* rows) { return orient3d_sign(rows); });
+}
+
+int insphere(const double* a, const double* b, const double* c, const double* d, const double* e, int* orientations) {
+    const double* points[5] = {a, b, c, d, e};
+    return evaluate_exactly(differences<5>(points),
+                            [orientations](const auto* rows) { return insphere_sign(rows, orientations); });
+}
+
+int incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v,
+                    int* orientations) {
+    const double* points[4] = {a, b, c, d};
+    return evaluate_exactly(differences<4>(points), [u, v, orientations](const auto* rows) {
+        return incircle_lifted_sign(rows, u, v, orientations);
+    });
 }
 
 int orient2d(const double* a, const double* b, const double* c, int u, int v) {
-    double h[12];
-    return expansion::sign(h, orient2d_raw(a, b, c, u, v, h));
+    const double* points[3] = {a, b, c};
+    return evaluate_exactly(differences<3>(points), [u, v](const auto* rows) { return orient2d_sign(rows, u, v); });
 }
 
 } // namespace exact

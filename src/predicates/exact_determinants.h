@@ -1,5 +1,7 @@
 // Exact signs of the determinants behind the predicates, for when the floating-point filter cannot
-// decide. Private to the predicates module.
+// decide. Private to the predicates module. Each needs the coordinates of its points to be multiples of
+// one power of two 2^g with every coordinate difference below 2^(g + 254): true of conditioned points
+// (|x| <= 1, multiples of 2^-200), and of any points whose coordinates are integers below 2^250.
 #pragma once
 
 namespace dbrg {
@@ -8,14 +10,16 @@ namespace exact {
 // Sign of det[a-d; b-d; c-d].
 int orient3d(const double* a, const double* b, const double* c, const double* d);
 
-// Sign of the determinant with rows (p - e, |p - e|^2) for p = a, b, c, d (Shewchuk's insphere).
-int insphere(const double* a, const double* b, const double* c, const double* d, const double* e);
+// Sign of the determinant with rows (p - e, |p - e|^2) for p = a, b, c, d (Shewchuk's insphere). When it
+// is 0 and orientations is not null, orientations[i] is set, for i = 0..4, to the sign of orient3d of the
+// other four of a, b, c, d, e in argument order: the lift cofactors that decide the perturbation.
+int insphere(const double* a, const double* b, const double* c, const double* d, const double* e, int* orientations);
 
 // Sign of the determinant with rows (p[u] - d[u], p[v] - d[v], |p - d|^2) for p = a, b, c, where
-// |p - d|^2 is the full 3D squared distance. Requires a, b, c, d exactly coplanar: the raw-coordinate
-// fallback evaluates the equivalent determinant with rows (p[u], p[v], |p|^2, 1), which agrees with the
-// translated form only in that case.
-int incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v);
+// |p - d|^2 is the full 3D squared distance. When it is 0 and orientations is not null, orientations[i]
+// is set, for i = 0..3, to the sign of orient2d (u, v) of the other three of a, b, c, d in argument order.
+int incircle_lifted(const double* a, const double* b, const double* c, const double* d, int u, int v,
+                    int* orientations);
 
 // Sign of det[a - c; b - c] for the projections onto the coordinates u, v.
 int orient2d(const double* a, const double* b, const double* c, int u, int v);

@@ -1,4 +1,4 @@
-// Geometric predicates: the floating-point filter first, exact expansion arithmetic when it cannot decide,
+// Geometric predicates: the floating-point filter first, exact integer arithmetic when it cannot decide,
 // and symbolic perturbation of the lifted coordinate when the exact value is zero.
 //
 // Based on: H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity" (1990), applied to the lift only
@@ -24,58 +24,35 @@
 namespace dbrg {
 namespace {
 
-int orient3d_sign(const double* a, const double* b, const double* c, const double* d) {
-    const int sign = filter::orient3d(a, b, c, d);
-    return sign != filter::UNDECIDED ? sign : exact::orient3d(a, b, c, d);
-}
-
 int orient2d_sign(const double* a, const double* b, const double* c, int u, int v) {
     const int sign = filter::orient2d(a, b, c, u, v);
     return sign != filter::UNDECIDED ? sign : exact::orient2d(a, b, c, u, v);
 }
 
-// order[0..n) = 0..n-1 sorted so that points[order[i]] ascend lexicographically; ties keep argument order.
-void sort_by_coordinates(const double* const* points, int n, int* order) {
+// The point that decides a perturbation: among the n points whose lift cofactor is not zero, the
+// lexicographically smallest (the first in argument order among equal ones), or -1 when all are zero.
+int deciding_point(const double* const* points, const int* cofactor_signs, int n) {
+    int best = -1;
     for (int i = 0; i < n; ++i) {
-        int j = i;
-        while (j > 0 && compare_points(points[order[j - 1]], points[i]) > 0) {
-            order[j] = order[j - 1];
-            --j;
-        }
-        order[j] = i;
+        if (cofactor_signs[i] != 0 && (best < 0 || compare_points(points[i], points[best]) < 0)) best = i;
     }
+    return best;
 }
 
 // The sign of the perturbed insphere determinant when the unperturbed one is zero. Row i of the 5x5
 // determinant (rows a..e, lift in column 4) has lift cofactor (-1)^(i+1) orient3d(the other four).
-int insphere_perturbation_sign(const double* const* points) {
-    int order[5];
-    sort_by_coordinates(points, 5, order);
-    for (int r = 0; r < 5; ++r) {
-        const int i = order[r];
-        const double* other[4];
-        for (int j = 0, k = 0; j < 5; ++j)
-            if (j != i) other[k++] = points[j];
-        const int sign = orient3d_sign(other[0], other[1], other[2], other[3]);
-        if (sign != 0) return i % 2 == 0 ? -sign : sign;
-    }
-    return 0;
+int insphere_perturbation_sign(const double* const* points, const int* orientations) {
+    const int i = deciding_point(points, orientations, 5);
+    if (i < 0) return 0;
+    return i % 2 == 0 ? -orientations[i] : orientations[i];
 }
 
 // The same for the coplanar determinant with rows (p[u], p[v], |p|^2, 1), p = a, b, c, d, whose lift
 // cofactors are (-1)^i orient2d(the other three).
-int incircle_perturbation_sign(const double* const* points, int u, int v) {
-    int order[4];
-    sort_by_coordinates(points, 4, order);
-    for (int r = 0; r < 4; ++r) {
-        const int i = order[r];
-        const double* other[3];
-        for (int j = 0, k = 0; j < 4; ++j)
-            if (j != i) other[k++] = points[j];
-        const int sign = orient2d_sign(other[0], other[1], other[2], u, v);
-        if (sign != 0) return i % 2 == 1 ? -sign : sign;
-    }
-    return 0;
+int incircle_perturbation_sign(const double* const* points, const int* orientations) {
+    const int i = deciding_point(points, orientations, 4);
+    if (i < 0) return 0;
+    return i % 2 == 1 ? -orientations[i] : orientations[i];
 }
 
 } // namespace
@@ -90,17 +67,18 @@ int orient3d(const double* a, const double* b, const double* c, const double* d,
 int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
                    PredicateCounters& counters) {
     ++counters.filter_failures;
-    return exact::insphere(a, b, c, d, e);
+    return exact::insphere(a, b, c, d, e, nullptr);
 }
 
 int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
                  PredicateCounters& counters) {
     ++counters.filter_failures;
-    const int sign = exact::insphere(a, b, c, d, e);
+    int orientations[5];
+    const int sign = exact::insphere(a, b, c, d, e, orientations);
     if (sign != 0) return sign;
     ++counters.perturbations;
     const double* points[5] = {a, b, c, d, e};
-    return insphere_perturbation_sign(points);
+    return insphere_perturbation_sign(points, orientations);
 }
 
 } // namespace slow_path
@@ -134,15 +112,17 @@ int incircle3d_sos(const double* a, const double* b, const double* c, const doub
         const int u = (axes[k] + 1) % 3, v = (axes[k] + 2) % 3;
         const int abc_sign = orient2d_sign(a, b, c, u, v);
         if (abc_sign == 0) continue;
+        // The filter never reports 0: a zero comes from the exact stage, with the perturbation's cofactors.
         int sign = filter::incircle(a, b, c, d, u, v);
+        int orientations[4];
         if (sign == filter::UNDECIDED) {
             ++counters.filter_failures;
-            sign = exact::incircle_lifted(a, b, c, d, u, v);
+            sign = exact::incircle_lifted(a, b, c, d, u, v, orientations);
         }
         if (sign == 0) {
             ++counters.perturbations;
             const double* points[4] = {a, b, c, d};
-            sign = incircle_perturbation_sign(points, u, v);
+            sign = incircle_perturbation_sign(points, orientations);
         }
         return abc_sign * sign;
     }

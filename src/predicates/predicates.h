@@ -1,14 +1,14 @@
-// Geometric predicates: orient3d and insphere with a floating-point filter, an exact expansion-arithmetic
+// Geometric predicates: orient3d and insphere with a floating-point filter, an exact fixed-width integer
 // fallback and symbolic perturbation, so that Delaunay decisions are exact and never ambiguous.
 //
 // Based on: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
-// Predicates" (1997) for the expansion arithmetic; H. Edelsbrunner and E. P. Mücke, "Simulation of
+// Predicates" (1997) for the filters' error bounds; H. Edelsbrunner and E. P. Mücke, "Simulation of
 // Simplicity" (1990) for the perturbation of the lifted coordinate, ordered by point coordinates.
 //
 // Points are `const double*` to three coordinates, expected conditioned as point_conditioning does it:
 // finite, |coordinate| <= 1, and each coordinate zero or a multiple of 2^-200 (every double of magnitude
-// at least 2^-147 is). Then no exact intermediate product overflows or underflows; the filters are sound
-// for any finite input of moderate size, but the exact fallback is only guaranteed under this condition.
+// at least 2^-147 is). The filters are sound for any finite input of moderate size; the exact fallback
+// needs the coordinates of one call to span at most 254 bits (exact_determinants.h), which this ensures.
 // orient3d, insphere_exact and insphere_sos are inline: the filter (filters.h) decides almost every call,
 // and the Delaunay engine's conflict tests and walk steps measured faster with it in their loops. What
 // follows the filter (exact arithmetic, perturbation) stays out of line.

@@ -1,10 +1,11 @@
 // dbrg-bench-delaunay: times the built-in tetrahedralization against TetGen and CGAL on the same points
-// (uniform cubes, a torus, an open surface patch, the real meshes' vertices) and prints the ratios.
+// (uniform cubes, a torus, an open surface patch, spheres, a cylinder, exact and jittered grids, the real
+// meshes' vertices) and prints the ratios.
 //
 // Each engine runs in a child process of its own, so that its peak resident memory is its own. Times are
 // processor seconds of that process.
 // Usage: dbrg-bench-delaunay [--quick] [--markdown] [--no-fork] [--data DIR] [--only NAME] [--repeat N]
-//                            [--size N] [--engines dbrg,tetgen,cgal]
+//                            [--size N] [--threads N] [--engines dbrg,tetgen,cgal]
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,11 +57,14 @@ struct Row {
     uint64_t peak_rss_bytes = 0;  // the child's high-water mark minus what it held at its start
 };
 
-// Processor time of this process: every engine is single-threaded, and unlike wall time it does not
-// count the time other programs on a busy machine take the processor away.
+unsigned threads = 1;  // --threads: dbrg's threads (0: all); the other engines are single-threaded
+
+// Processor time of this process when every engine is single-threaded: unlike wall time it does not
+// count the time other programs on a busy machine take the processor away. Wall time when dbrg runs on
+// several threads, whose processor times add up.
 double now() {
     timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    clock_gettime(threads == 1 ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_MONOTONIC, &t);
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
@@ -100,6 +104,50 @@ Dataset torus(size_t n) {
     return d;
 }
 
+// Uniform on the unit sphere: every five points are cospherical up to the rounding of their coordinates.
+Dataset sphere(size_t n) {
+    Dataset d{"sphere " + std::to_string(n / 1000) + "k", {}};
+    d.xyz.reserve(3 * n);
+    Random r(29);
+    while (d.xyz.size() < 3 * n) {
+        const double x = 2 * r.uniform() - 1, y = 2 * r.uniform() - 1, z = 2 * r.uniform() - 1;
+        const double length = sqrt(x * x + y * y + z * z);
+        if (length > 1 || length < 0.01) continue;  // uniform directions: the ball, not the cube
+        d.xyz.insert(d.xyz.end(), {x / length, y / length, z / length});
+    }
+    return d;
+}
+
+// Uniform on an open cylinder of radius 1 and height 6: every four points of one circle are cocircular
+// up to rounding, and so nearly cospherical with any fifth.
+Dataset cylinder(size_t n) {
+    Dataset d{"cylinder " + std::to_string(n / 1000) + "k", std::vector<double>(3 * n)};
+    Random r(31);
+    const double pi = 3.141592653589793;
+    for (size_t i = 0; i < n; ++i) {
+        const double angle = 2 * pi * r.uniform();
+        d.xyz[3 * i] = cos(angle);
+        d.xyz[3 * i + 1] = sin(angle);
+        d.xyz[3 * i + 2] = 6 * r.uniform();
+    }
+    return d;
+}
+
+// The integer points of a cube of side `side` (exactly cospherical in groups of eight and more), moved by
+// up to `jitter` along each axis.
+Dataset grid(size_t side, double jitter) {
+    Dataset d{std::string(jitter > 0 ? "jittered grid " : "grid ") + std::to_string(side * side * side / 1000) + "k", {}};
+    d.xyz.reserve(3 * side * side * side);
+    Random r(37);
+    for (size_t i = 0; i < side; ++i)
+        for (size_t j = 0; j < side; ++j)
+            for (size_t k = 0; k < side; ++k) {
+                const double p[3] = {double(i), double(j), double(k)};
+                for (double c : p) d.xyz.push_back(c + jitter * (2 * r.uniform() - 1));
+            }
+    return d;
+}
+
 // An open, curved height-field patch.
 Dataset surface_patch(size_t n) {
     Dataset d{"open patch " + std::to_string(n / 1000) + "k", std::vector<double>(3 * n)};
@@ -119,7 +167,7 @@ Measure run_engine(Engine engine, const Dataset& data) {
     dbrg_params params;
     memset(&params, 0, sizeof params);
     params.struct_size = sizeof params;
-    params.threads = 1;  // single-threaded, like the engines it is compared with
+    params.threads = threads;  // 1 by default, like the engines it is compared with
     const size_t n = data.xyz.size() / 3;
     if (engine == CGAL) {
 #if DBRG_BENCH_HAVE_CGAL
@@ -237,9 +285,10 @@ int main(int argc, char** argv) {
         else if (!strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
         else if (!strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--size") && i + 1 < argc) size = strtoull(argv[++i], nullptr, 10);
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = unsigned(atoi(argv[++i]));
         else if (!strcmp(argv[i], "--engines") && i + 1 < argc) engine_filter = argv[++i];
         else {
-            fprintf(stderr, "usage: %s [--quick] [--markdown] [--no-fork] [--data DIR] [--only NAME] [--repeat N] [--size N] [--engines dbrg,tetgen,cgal]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick] [--markdown] [--no-fork] [--data DIR] [--only NAME] [--repeat N] [--size N] [--threads N] [--engines dbrg,tetgen,cgal]\n", argv[0]);
             return 2;
         }
     }
@@ -249,6 +298,14 @@ int main(int argc, char** argv) {
     if (!quick) sets.push_back(uniform_cube(big));
     sets.push_back(torus(big));
     sets.push_back(surface_patch(big));
+    sets.push_back(sphere(20000));
+    sets.push_back(sphere(big / 5));
+    if (!quick) sets.push_back(sphere(big));
+    sets.push_back(cylinder(big / 5));
+    if (!quick) sets.push_back(cylinder(big));
+    const size_t side = size_t(cbrt(double(big / 5)) + 0.5);
+    sets.push_back(grid(side, 0));
+    sets.push_back(grid(side, 0x1p-10));
     if (!data_dir.empty()) load_meshes(data_dir, sets);
 
     printf("engines: dbrg%s%s; times are the best of %d; ratio = other engine's time / dbrg's time\n",
