@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/splitmix64.h"
-#include "delaunay/point_conditioning.h"
+#include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "predicates/exact_determinants.h"
 #include "predicates/filters.h"

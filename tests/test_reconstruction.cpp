@@ -388,7 +388,7 @@ TEST_CASE("a snapshot callback can cancel") {
     CHECK(snapshots.triangles.size() == 2);
 }
 
-TEST_CASE("validation, sorting and output report progress inside the stage, not only at its ends") {
+TEST_CASE("validation and output report progress inside the stage, not only at its ends") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 2000);
     struct Log {
         std::vector<std::pair<dbrg_stage, double>> reports;
@@ -402,7 +402,8 @@ TEST_CASE("validation, sorting and output report progress inside the stage, not 
     params.progress = Log::record;
     params.progress_user = &log;
     REQUIRE(test::reconstruct(xyz, &params).status == DBRG_OK);
-    for (dbrg_stage stage : {DBRG_STAGE_VALIDATE, DBRG_STAGE_SORT, DBRG_STAGE_OUTPUT}) {
+    // Sorting takes the order validation's renumbering left: it reports its ends only.
+    for (dbrg_stage stage : {DBRG_STAGE_VALIDATE, DBRG_STAGE_OUTPUT}) {
         CAPTURE(stage);
         CHECK(std::any_of(log.reports.begin(), log.reports.end(), [stage](const std::pair<dbrg_stage, double>& r) {
             return r.first == stage && r.second > 0.0 && r.second < 1.0;

@@ -102,7 +102,7 @@ LONG_RECONSTRUCTION = r"""
 import sys, time
 import dbrg
 from _support import fibonacci_sphere
-points = fibonacci_sphere(100000)  # tens of seconds of work
+points = fibonacci_sphere(1000000)  # several seconds of work
 print("started", flush=True)
 start = time.perf_counter()
 reports = []
