@@ -119,7 +119,13 @@ uint64_t hilbert_index(uint32_t x, uint32_t y, uint32_t z, int bits) {
     return spread_bits(a[0]) << 2 | spread_bits(a[1]) << 1 | spread_bits(a[2]);
 }
 
-dbrg_status brio_hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order) {
+namespace {
+
+// Fills `order` with 0 .. count - 1 sorted by key(grid, i), ties by index, where grid is the Hilbert grid
+// over the points' bounding box: the one sort behind both orders below.
+template <class Key>
+dbrg_status order_by_key(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order,
+                         const Key& key) {
     Context& context = progress.context();
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     Array<KeyedIndex> keyed(context.memory);
@@ -130,18 +136,23 @@ dbrg_status brio_hilbert_order(const double* points, uint32_t count, const Progr
     if (count == 0) return progress.report(1, 1);
     HilbertGrid grid;
     DBRG_PROPAGATE(grid_over(points, count, progress, grid));
-
-    // One sort by (round, Hilbert index) orders everything.
-    const int rounds = BrioOrder::round_count(count);
     DBRG_PROPAGATE(progress.part(0.1, 0.3).for_each_step(count, parts, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const uint64_t round = uint64_t(BrioOrder::round_of(static_cast<uint32_t>(i), rounds));
-            keyed[i] = KeyedIndex{round << (3 * HILBERT_BITS) | grid.key(points + 3 * i), static_cast<uint32_t>(i)};
-        }
+        for (size_t i = begin; i < end; ++i) keyed[i] = KeyedIndex{key(grid, i), static_cast<uint32_t>(i)};
     }));
     DBRG_PROPAGATE(progress.part(0.3, 0.9).sort(keyed.data(), count, scratch.data(), parts, by_key_then_index));
     return progress.part(0.9, 1.0).for_each_step(count, parts, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) order[i] = keyed[i].index;
+    });
+}
+
+} // namespace
+
+dbrg_status brio_hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order) {
+    // One sort by (round, Hilbert index) orders everything.
+    const int rounds = BrioOrder::round_count(count);
+    return order_by_key(points, count, progress, order, [&](const HilbertGrid& grid, size_t i) {
+        const uint64_t round = uint64_t(BrioOrder::round_of(static_cast<uint32_t>(i), rounds));
+        return round << (3 * HILBERT_BITS) | grid.key(points + 3 * i);
     });
 }
 
@@ -220,23 +231,8 @@ dbrg_status in_hilbert_order(const double* points, uint32_t count, const Progres
 }
 
 dbrg_status hilbert_order(const double* points, uint32_t count, const ProgressSpan& progress, Array<uint32_t>& order) {
-    Context& context = progress.context();
-    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
-    Array<KeyedIndex> keyed(context.memory);
-    Array<KeyedIndex> scratch(context.memory);
-    if (!order.resize(count) || !keyed.resize(count) || (sort_needs_scratch(count, parts) && !scratch.resize(count))) {
-        return context.fail_out_of_memory();
-    }
-    if (count == 0) return progress.report(1, 1);
-    HilbertGrid grid;
-    DBRG_PROPAGATE(grid_over(points, count, progress, grid));
-    DBRG_PROPAGATE(progress.part(0.1, 0.3).for_each_step(count, parts, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) keyed[i] = KeyedIndex{grid.key(points + 3 * i), static_cast<uint32_t>(i)};
-    }));
-    DBRG_PROPAGATE(progress.part(0.3, 0.9).sort(keyed.data(), count, scratch.data(), parts, by_key_then_index));
-    return progress.part(0.9, 1.0).for_each_step(count, parts, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) order[i] = keyed[i].index;
-    });
+    return order_by_key(points, count, progress, order,
+                        [&](const HilbertGrid& grid, size_t i) { return grid.key(points + 3 * i); });
 }
 
 } // namespace dbrg
