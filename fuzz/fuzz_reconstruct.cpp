@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pi.h"
 #include "dbrg/dbrg.h"
 #include "exact_geometry.h"
 #include "fuzz_check.h"
@@ -27,7 +28,6 @@ namespace {
 
 // Bugs show on small sets (the ones found so far had 6 to 74 points); small inputs run many times faster.
 const size_t MAX_POINTS = 600;
-const double PI = 3.14159265358979323846;
 const double NAN_VALUE = __builtin_nan("");
 const double INF_VALUE = __builtin_inf();
 

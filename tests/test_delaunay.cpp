@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "core/pi.h"
 #include "delaunay/edge_ring.h"
 #include "points/point_conditioning.h"
 #include "points/spatial_sort.h"
@@ -212,8 +213,8 @@ TEST_CASE("small degenerate sets") {
     SUBCASE("cocircular points on a plane plus one above") {
         std::vector<double> xyz;
         for (int i = 0; i < 12; ++i) {
-            xyz.push_back(cos(i * 3.141592653589793 / 6));
-            xyz.push_back(sin(i * 3.141592653589793 / 6));
+            xyz.push_back(cos(i * PI / 6));
+            xyz.push_back(sin(i * PI / 6));
             xyz.push_back(0);
         }
         xyz.insert(xyz.end(), {0, 0, 1});

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pi.h"
 #include "io/mesh_io.h"
 #include "measure/mesh_report.h"
 #include "predicates/exact_determinants.h"
@@ -23,10 +24,10 @@
 
 using namespace dbrg::io;
 using namespace dbrg::measure;
+using dbrg::PI;
 
 namespace {
 
-const double PI = 3.14159265358979323846;
 
 MeshReport report_of(const MeshData& mesh) {
     MeshReport report;

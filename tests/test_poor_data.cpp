@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pi.h"
 #include "core/splitmix64.h"
 #include "dbrg/dbrg.h"
 #include "measure/mesh_report.h"
@@ -43,7 +44,7 @@ inline std::vector<double> overlapping_spheres(size_t points, double distance, u
     SplitMix64 random(seed);
     std::vector<double> xyz;
     while (xyz.size() < 3 * points) {
-        const double z = 2 * random.uniform() - 1, a = 2 * 3.14159265358979323846 * random.uniform();
+        const double z = 2 * random.uniform() - 1, a = 2 * PI * random.uniform();
         const double r = std::sqrt(1 - z * z);
         const bool upper = random.uniform() > 0.5;
         const double p[3] = {r * std::cos(a), r * std::sin(a), upper ? distance + z : z};
@@ -153,7 +154,7 @@ TEST_CASE("a coarsely sampled torus keeps its handle: its short cycles are long 
 
 TEST_CASE("noise: jitter of a fraction of the spacing still gives a valid manifold, closed for mild noise") {
     const std::vector<double> clean = samples::sample(samples::Shape::sphere, 4000);
-    const double spacing = std::sqrt(4 * 3.14159265358979 / 4000);
+    const double spacing = std::sqrt(4 * PI / 4000);
     require_closed(jittered(clean, 0.1 * spacing, 1), 0, "10% jitter");
     for (double fraction : {0.3, 0.6}) {
         CAPTURE(fraction);

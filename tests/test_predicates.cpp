@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/pi.h"
 #include "core/splitmix64.h"
 #include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
@@ -827,7 +828,7 @@ TEST_CASE("the filters report only signs the exact reference confirms, and hand 
         Point q[4];
         const double circle_centre[2] = {random.unit() / 4, random.unit() / 4};
         for (Point& r : q) {
-            const double angle = 3.141592653589793 * random.unit();
+            const double angle = PI * random.unit();
             r = Point{{on_grid(circle_centre[0] + radius * cos(angle)), on_grid(circle_centre[1] + radius * sin(angle)), 0.5}};
         }
         q[3] = nudged(q[3], axis == 2 ? 0 : axis, ulps, up);

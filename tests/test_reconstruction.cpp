@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/pi.h"
 #include "dbrg/dbrg.h"
 #include "io/mesh_io.h"
 #include "measure/mesh_report.h"
@@ -72,7 +73,6 @@ namespace {
 // tube, every other circle turned by half a step, each point then moved along the surface by up to
 // `jitter` steps. Its vertices are the input, the mesh the reference.
 io::MeshData staggered_torus(uint32_t around, uint32_t rows, double jitter) {
-    const double PI = 3.14159265358979323846;
     std::mt19937_64 random(7);
     std::uniform_real_distribution<double> shift(-jitter, jitter);
     io::MeshData mesh;

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pi.h"
 #include "core/context.h"
 #include "core/splitmix64.h"
 #include "points/point_conditioning.h"
@@ -95,7 +96,7 @@ Dataset torus(size_t n) {
     Dataset d{"torus " + std::to_string(n / 1000) + "k", {}};
     d.xyz.reserve(3 * n);
     Random r(17);
-    const double R = 1.0, tube = 0.35, pi = 3.141592653589793;
+    const double R = 1.0, tube = 0.35, pi = dbrg::PI;
     while (d.xyz.size() < 3 * n) {
         const double u = 2 * pi * r.uniform(), v = 2 * pi * r.uniform();
         if (r.uniform() * (R + tube) > R + tube * cos(v)) continue;
@@ -123,7 +124,7 @@ Dataset sphere(size_t n) {
 Dataset cylinder(size_t n) {
     Dataset d{"cylinder " + std::to_string(n / 1000) + "k", std::vector<double>(3 * n)};
     Random r(31);
-    const double pi = 3.141592653589793;
+    const double pi = dbrg::PI;
     for (size_t i = 0; i < n; ++i) {
         const double angle = 2 * pi * r.uniform();
         d.xyz[3 * i] = cos(angle);
