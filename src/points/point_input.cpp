@@ -32,16 +32,21 @@ dbrg_status copy_points(const unsigned char* bytes, size_t count, size_t stride,
 
 } // namespace
 
+dbrg_status check_not_too_many_points(size_t count, Context& context) {
+    if (count <= DBRG_MAX_POINTS) return DBRG_OK;
+    return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", count,
+                        static_cast<size_t>(DBRG_MAX_POINTS));
+}
+
+dbrg_status check_enough_points(size_t count, Context& context) {
+    if (count >= 4) return DBRG_OK;
+    return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu point%s given; at least 4 distinct points are needed", count,
+                        count == 1 ? "" : "s");
+}
+
 dbrg_status check_point_count(size_t count, Context& context) {
-    if (count < 4) {
-        return context.fail(DBRG_ERR_TOO_FEW_POINTS, "%zu point%s given; at least 4 distinct points are needed", count,
-                            count == 1 ? "" : "s");
-    }
-    if (count > DBRG_MAX_POINTS) {
-        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu points given; at most %zu are supported", count,
-                            static_cast<size_t>(DBRG_MAX_POINTS));
-    }
-    return DBRG_OK;
+    DBRG_PROPAGATE(check_enough_points(count, context));
+    return check_not_too_many_points(count, context);
 }
 
 dbrg_status copy_caller_points(const dbrg_points* points, Context& context, Array<double>& xyz) {
@@ -55,12 +60,12 @@ dbrg_status copy_caller_points(const dbrg_points* points, Context& context, Arra
         return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->stride_bytes is %zu; a point needs at least %zu bytes",
                             points->stride_bytes, 3 * scalar_size);
     }
+    DBRG_PROPAGATE(check_not_too_many_points(points->count, context));
     if (points->count > (SIZE_MAX - 3 * scalar_size) / points->stride_bytes) {
         return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu point%s at a stride of %zu bytes overflow%s the address space",
                             points->count, points->count == 1 ? "" : "s", points->stride_bytes,
                             points->count == 1 ? "s" : "");
     }
-    DBRG_PROPAGATE(check_point_count(points->count, context));
     if (points->count > 0 && !points->data) {
         return context.fail(DBRG_ERR_INVALID_ARGUMENT, "points->data is NULL but points->count is %zu", points->count);
     }
@@ -69,7 +74,8 @@ dbrg_status copy_caller_points(const dbrg_points* points, Context& context, Arra
     DBRG_PROPAGATE(points->type == DBRG_FLOAT32
                        ? copy_points<float>(bytes, points->count, points->stride_bytes, context, xyz)
                        : copy_points<double>(bytes, points->count, points->stride_bytes, context, xyz));
-    return DBRG_OK;
+    // After the copy: a NaN among three points is the problem to name first.
+    return check_enough_points(points->count, context);
 }
 
 } // namespace dbrg

@@ -10,8 +10,10 @@ namespace dbrg {
 // has the rest.
 constexpr double VALIDATE_READ_SHARE = 0.05;
 
-// The count every stage needs: at least 4 points (fewer cannot span a tetrahedron) and at most
-// DBRG_MAX_POINTS. Returns DBRG_OK, or DBRG_ERR_TOO_FEW_POINTS / DBRG_ERR_TOO_MANY_POINTS with the message set.
+// The counts every stage needs, each a status with its message set: at most DBRG_MAX_POINTS
+// (DBRG_ERR_TOO_MANY_POINTS), at least 4 (DBRG_ERR_TOO_FEW_POINTS: fewer cannot span a tetrahedron), both.
+dbrg_status check_not_too_many_points(size_t count, Context& context);
+dbrg_status check_enough_points(size_t count, Context& context);
 dbrg_status check_point_count(size_t count, Context& context);
 
 // Checks the caller's `points` (type, stride, the count, count * stride overflow, NULL data, NaN / infinity
