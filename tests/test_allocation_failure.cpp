@@ -1,18 +1,22 @@
 // The caller's allocator and progress callback when things go wrong: refusing any one allocation of
 // dbrg_reconstruct or dbrg_tetrahedralize, or every allocation from some point on, gives
 // DBRG_ERR_OUT_OF_MEMORY; cancelling at any progress report gives DBRG_ERR_CANCELLED; either way nothing
-// leaks and every block comes back with its size. Point counts beyond the limits fail before anything is
-// allocated or read.
+// leaks and every block comes back with its size. Every pass of a stage reports inside its share of the
+// stage's progress. Point counts beyond the limits fail before anything is allocated or read.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/splitmix64.h"
 #include "dbrg/dbrg.h"
 #include "delaunay_test_support.h"
+#include "grow/region_growing.h"
+#include "holes/hole_filling.h"
 #include "samples/samples.h"
 #include "support/counting_allocator.h"
 
@@ -322,6 +326,85 @@ TEST_CASE("a large input: validation and sorting report in steps, and a cancel t
         CHECK(cancelling.reports.back().first == stage);
         CHECK(cancelling.reports.back().second < 1.0);
         CHECK(cancelling.count_inside(cancelling.cancel_in) == 1);
+        require_nothing_held(allocator);
+    }
+}
+
+TEST_CASE("every stage reports from 0 to 1, and each pass of growing and hole filling inside its share") {
+    // 40,000 points each. Points at random on a sphere, jittered by a third of the spacing: hundreds of
+    // holes, islands, thousands of edges whose flips wait for the holes to close, and more than 65,536
+    // faces to label for components. A torus, whose handle takes a round of the search for small handles.
+    // A clean sphere: no holes.
+    const std::vector<double> noisy = [] {
+        std::vector<double> xyz = dbrg_test::random_sphere(40000, 17);
+        SplitMix64 random(3);
+        const double spacing = std::sqrt(4 * 3.14159265358979 / 40000);
+        for (double& x : xyz) x += spacing / 3 * (2 * random.uniform() - 1);
+        return xyz;
+    }();
+    const std::vector<double> torus = samples::sample(samples::Shape::torus, 40000);
+    const std::vector<double> sphere = samples::sample(samples::Shape::sphere, 3000);
+
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.progress = StageWatcher::report;
+    std::map<const std::vector<double>*, StageWatcher> watched;
+    for (const std::vector<double>* xyz : {&noisy, &torus, &sphere}) {
+        StageWatcher& watcher = watched[xyz];
+        watcher.stop_at_delaunay = false;
+        params.progress_user = &watcher;
+        REQUIRE(call(EntryPoint::reconstruct, *xyz, params).status == DBRG_OK);
+        for (int stage = DBRG_STAGE_VALIDATE; stage <= DBRG_STAGE_OUTPUT; ++stage) {
+            CAPTURE(stage);
+            std::vector<double> fractions;
+            for (const auto& r : watcher.reports) {
+                if (r.first == stage) fractions.push_back(r.second);
+            }
+            REQUIRE(!fractions.empty());
+            CHECK(fractions.front() == 0.0);
+            CHECK(fractions.back() == 1.0);
+        }
+    }
+
+    const dbrg_stage GROW = DBRG_STAGE_GROW, FILL = DBRG_STAGE_FILL_HOLES;
+    const double REGROWING = REGROW_PROGRESS_GROWING * FILL_PROGRESS_EARS;
+    // The first round of removing small handles: the first half of that pass.
+    const auto handles_round = [](double from, double to) {
+        const double begin = FILL_PROGRESS_HANDLES, length = (FILL_PROGRESS_FLIPS - FILL_PROGRESS_HANDLES) / 2;
+        return Window{DBRG_STAGE_FILL_HOLES, begin + from * length, begin + to * length};
+    };
+    const struct {
+        const char* pass;
+        const std::vector<double>& xyz;
+        Window window;
+    } passes[] = {
+        {"growing", noisy, {GROW, 0.0, GROW_PROGRESS_ISLANDS}},
+        {"removing islands", noisy, {GROW, GROW_PROGRESS_ISLANDS, GROW_PROGRESS_FLIPS}},
+        {"flipping edges", noisy, {GROW, GROW_PROGRESS_FLIPS, 1.0}},
+        {"regrowing: the holes' edges", noisy, {FILL, 0.0, REGROWING}},
+        {"regrowing: growing", noisy, {FILL, REGROWING, FILL_PROGRESS_EARS}},
+        {"ears", noisy, {FILL, FILL_PROGRESS_EARS, FILL_PROGRESS_ISLANDS}},
+        {"removing the islands of filling", noisy, {FILL, FILL_PROGRESS_ISLANDS, FILL_PROGRESS_HANDLES}},
+        {"handles: labelling components", noisy, handles_round(0.0, HANDLES_PROGRESS_TREE)},
+        {"handles: spanning tree", torus, handles_round(HANDLES_PROGRESS_TREE, HANDLES_PROGRESS_COTREE)},
+        {"handles: cotree", torus, handles_round(HANDLES_PROGRESS_COTREE, HANDLES_PROGRESS_CYCLES)},
+        {"handles: short cycles", torus, handles_round(HANDLES_PROGRESS_CYCLES, HANDLES_PROGRESS_CUTS)},
+        {"deferred flips", noisy, {FILL, FILL_PROGRESS_FLIPS, 1.0}},
+    };
+    for (const auto& pass : passes) {
+        CAPTURE(std::string(pass.pass));
+        REQUIRE(watched[&pass.xyz].count_inside(pass.window) >= 1);
+
+        test::CountingAllocator allocator;
+        StageWatcher cancelling;
+        cancelling.stop_at_delaunay = false;
+        cancelling.cancel_in = pass.window;
+        params.progress_user = &cancelling;
+        params.allocator = allocator.get();
+        CHECK(call(EntryPoint::reconstruct, pass.xyz, params).status == DBRG_ERR_CANCELLED);
+        // Cancelled inside the pass, and no report after that one.
+        CHECK(cancelling.count_inside(pass.window) == 1);
+        CHECK(cancelling.cancel_in.holds(cancelling.reports.back().first, cancelling.reports.back().second));
         require_nothing_held(allocator);
     }
 }
