@@ -579,8 +579,8 @@ TEST_CASE("the tetrahedron store is written in steps between progress reports, n
 TEST_CASE("threads sharing the last round: the calling thread reports all their points as they come in") {
     // 200,000 points on two threads: the last round's three quarters are split in two. Counting only the
     // calling thread's points, or not reporting while it waits for the other thread, leaves a jump of up
-    // to a third of the stage; the calling thread reports every 256 of its points, which with the other
-    // thread's move the fraction by about 0.3 %.
+    // to 37 % of the stage; the calling thread reports every 256 of its points, which with the other
+    // thread's move the fraction by about 0.3 % (more while the calling thread waits for a processor).
     const StoreWatch watch = watch_store(random_cube(200000, 22), 2);
     REQUIRE(watch.fractions.size() > 50);
     double largest_jump = 0;
@@ -588,7 +588,7 @@ TEST_CASE("threads sharing the last round: the calling thread reports all their 
         largest_jump = std::max(largest_jump, watch.fractions[i] - watch.fractions[i - 1]);
     }
     CHECK(watch.fractions.back() == 1.0);
-    CHECK(largest_jump < 0.15);
+    CHECK(largest_jump < 0.25);
 }
 
 TEST_CASE("the TetGen backend's availability matches the build") {
