@@ -42,19 +42,23 @@ dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& contex
 } // namespace
 
 dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context) {
+    const ProgressSpan stage(context, DBRG_STAGE_FILL_HOLES);
+    DBRG_PROPAGATE(stage.report(0, 1));
     HoleFiller filler(delaunay, surface, grower.boundary_causes(), context);
     bool holes = false;
     DBRG_PROPAGATE(filler.find_holes(holes));
     if (holes) {
         // Delaunay triangles first, as growing would attach them: S has changed around the holes since
         // their edges were last examined. Then ears over what is left.
-        DBRG_PROPAGATE(grower.regrow_holes());
-        DBRG_PROPAGATE(filler.fill_with_ears());
+        DBRG_PROPAGATE(grower.regrow_holes(stage.part(0, FILL_PROGRESS_EARS)));
+        DBRG_PROPAGATE(filler.fill_with_ears(stage.part(FILL_PROGRESS_EARS, FILL_PROGRESS_ISLANDS),
+                                             stage.part(FILL_PROGRESS_ISLANDS, FILL_PROGRESS_HANDLES)));
     }
-    DBRG_PROPAGATE(filler.remove_small_handles());
+    DBRG_PROPAGATE(filler.remove_small_handles(stage.part(FILL_PROGRESS_HANDLES, FILL_PROGRESS_FLIPS)));
     // Growing's flips passed over the edges with a corner on a hole's rim: the holes are closed, and what is
     // around the filled holes has changed.
-    return grower.flip_deferred();
+    DBRG_PROPAGATE(grower.flip_deferred(stage.part(FILL_PROGRESS_FLIPS, 1)));
+    return stage.report(1, 1);
 }
 
 dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, SurfaceResult& result) {

@@ -28,7 +28,8 @@ dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, T
 
 // The hole-filling stage of reconstruct_surface, on S as `grower` left it: Delaunay triangles over the holes
 // (RegionGrower::regrow_holes), then ears (HoleFiller), small handles removed, and last the flips growing
-// deferred (RegionGrower::flip_deferred). Fills the hole and handle fields of context.stats.
+// deferred (RegionGrower::flip_deferred), each reporting in its share of DBRG_STAGE_FILL_HOLES's progress
+// (FILL_PROGRESS_* in holes/hole_filling.h). Fills the hole and handle fields of context.stats.
 dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context);
 
 } // namespace dbrg

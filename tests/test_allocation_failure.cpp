@@ -1,18 +1,22 @@
 // The caller's allocator and progress callback when things go wrong: refusing any one allocation of
 // dbrg_reconstruct or dbrg_tetrahedralize, or every allocation from some point on, gives
 // DBRG_ERR_OUT_OF_MEMORY; cancelling at any progress report gives DBRG_ERR_CANCELLED; either way nothing
-// leaks and every block comes back with its size. Point counts beyond the limits fail before anything is
-// allocated or read.
+// leaks and every block comes back with its size. Every pass of a stage reports inside its share of the
+// stage's progress. Point counts beyond the limits fail before anything is allocated or read.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/splitmix64.h"
 #include "dbrg/dbrg.h"
 #include "delaunay_test_support.h"
+#include "grow/region_growing.h"
+#include "holes/hole_filling.h"
 #include "samples/samples.h"
 #include "support/counting_allocator.h"
 
@@ -99,22 +103,33 @@ struct Canceller {
 
 const EntryPoint ENTRY_POINTS[] = {EntryPoint::reconstruct, EntryPoint::tetrahedralize};
 
-// Records the reports; cancels at the first one of stage `cancel_stage` strictly inside the stage, or at
-// the first report of the Delaunay stage (nothing after that is watched).
+// A share of a stage's progress, its ends excluded: where one pass of the stage reports.
+struct Window {
+    dbrg_stage stage;
+    double from, to;
+    bool holds(dbrg_stage s, double fraction) const { return s == stage && fraction > from && fraction < to; }
+};
+
+// Records the reports, and with an allocator the bytes it holds at each; cancels at the first one inside
+// `cancel_in`, and with `stop_at_delaunay` at the first report of the Delaunay stage (nothing after that is
+// watched).
 struct StageWatcher {
     std::vector<std::pair<dbrg_stage, double>> reports;
-    int cancel_stage = -1;
+    const test::CountingAllocator* allocator = nullptr;
+    std::vector<size_t> live_bytes;
+    Window cancel_in{DBRG_STAGE_VALIDATE, 1.0, 0.0};  // none
+    bool stop_at_delaunay = true;
 
     static int report(void* user, dbrg_stage stage, double fraction) {
         StageWatcher& self = *static_cast<StageWatcher*>(user);
         self.reports.emplace_back(stage, fraction);
-        const bool inside = stage == self.cancel_stage && fraction > 0.0 && fraction < 1.0;
-        return inside || stage == DBRG_STAGE_DELAUNAY ? 1 : 0;
+        if (self.allocator) self.live_bytes.push_back(self.allocator->live_bytes());
+        return self.cancel_in.holds(stage, fraction) || (self.stop_at_delaunay && stage == DBRG_STAGE_DELAUNAY) ? 1 : 0;
     }
 
-    size_t count_inside(dbrg_stage stage) const {
+    size_t count_inside(const Window& window) const {
         size_t inside = 0;
-        for (const auto& r : reports) inside += r.first == stage && r.second > 0.0 && r.second < 1.0;
+        for (const auto& r : reports) inside += window.holds(r.first, r.second);
         return inside;
     }
 };
@@ -197,14 +212,23 @@ TEST_CASE("an input split among threads: refusals and cancelling while threads i
     REQUIRE(full.status == DBRG_OK);
     require_nothing_held(allocator);
     const uint64_t requests = allocator.requests(), reports = canceller.calls;
+    // While the other thread inserts its part, the calling thread reports as its points come in: how
+    // often depends on the timing, so a run may report fewer times than the first one.
+    uint64_t cancelled_runs = 0;
     for (uint64_t k = 1; k <= reports; ++k) {
         CAPTURE(k);
         canceller = Canceller{0, k, 0};
         const Call cancelled = call(EntryPoint::tetrahedralize, xyz, params);
+        require_nothing_held(allocator);
+        if (canceller.calls < k) {
+            REQUIRE(cancelled.status == DBRG_OK);
+            continue;
+        }
         REQUIRE(cancelled.status == DBRG_ERR_CANCELLED);
         REQUIRE(canceller.calls == k);
-        require_nothing_held(allocator);
+        ++cancelled_runs;
     }
+    CHECK(cancelled_runs >= reports * 3 / 4);
     canceller = Canceller{};
     const uint64_t SAMPLES = 24;
     for (bool persistent : {false, true}) {
@@ -264,24 +288,30 @@ TEST_CASE("a large input: validation reports in steps, and a cancel there stops 
     // 600,000 points: every pass of validation and sorting takes several steps.
     const std::vector<double> xyz = dbrg_test::random_sphere(600000, 51);
     const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    test::CountingAllocator counting;
     StageWatcher watched;
+    watched.allocator = &counting;
     dbrg_params params;
     dbrg_params_init(&params);
+    params.allocator = counting.get();
     params.progress = StageWatcher::report;
     params.progress_user = &watched;
     dbrg_mesh* mesh = nullptr;
     CHECK(dbrg_reconstruct(&points, &params, &mesh) == DBRG_ERR_CANCELLED);  // at the Delaunay stage's first report
     dbrg_mesh_destroy(mesh);
     REQUIRE(watched.reports.back().first == DBRG_STAGE_DELAUNAY);
-    CHECK(watched.count_inside(DBRG_STAGE_VALIDATE) >= 20);
+    CHECK(watched.count_inside(Window{DBRG_STAGE_VALIDATE, 0.0, 1.0}) >= 20);
     // The insertion order is the one the renumbering in validation left: sorting has no pass of its own.
-    CHECK(watched.count_inside(DBRG_STAGE_SORT) == 0);
+    CHECK(watched.count_inside(Window{DBRG_STAGE_SORT, 0.0, 1.0}) == 0);
+    // The Delaunay stage reports as it starts, before it reserves its tetrahedron store (6 slots of 32
+    // bytes per point; the conditioned points take 28).
+    CHECK(watched.live_bytes.back() < 100 * xyz.size() / 3);
 
     for (dbrg_stage stage : {DBRG_STAGE_VALIDATE}) {
         CAPTURE(stage);
         test::CountingAllocator allocator;
         StageWatcher cancelling;
-        cancelling.cancel_stage = stage;
+        cancelling.cancel_in = Window{stage, 0.0, 1.0};
         params.allocator = allocator.get();
         params.progress_user = &cancelling;
         mesh = nullptr;
@@ -296,7 +326,86 @@ TEST_CASE("a large input: validation reports in steps, and a cancel there stops 
         // Cancelled inside the stage, and no report after that one.
         CHECK(cancelling.reports.back().first == stage);
         CHECK(cancelling.reports.back().second < 1.0);
-        CHECK(cancelling.count_inside(stage) == 1);
+        CHECK(cancelling.count_inside(cancelling.cancel_in) == 1);
+        require_nothing_held(allocator);
+    }
+}
+
+TEST_CASE("every stage reports from 0 to 1, and each pass of growing and hole filling inside its share") {
+    // 40,000 points each. Points at random on a sphere, jittered by a third of the spacing: hundreds of
+    // holes, islands, thousands of edges whose flips wait for the holes to close, and more than 65,536
+    // faces to label for components. A torus, whose handle takes a round of the search for small handles.
+    // A clean sphere: no holes.
+    const std::vector<double> noisy = [] {
+        std::vector<double> xyz = dbrg_test::random_sphere(40000, 17);
+        SplitMix64 random(3);
+        const double spacing = std::sqrt(4 * 3.14159265358979 / 40000);
+        for (double& x : xyz) x += spacing / 3 * (2 * random.uniform() - 1);
+        return xyz;
+    }();
+    const std::vector<double> torus = samples::sample(samples::Shape::torus, 40000);
+    const std::vector<double> sphere = samples::sample(samples::Shape::sphere, 3000);
+
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.progress = StageWatcher::report;
+    std::map<const std::vector<double>*, StageWatcher> watched;
+    for (const std::vector<double>* xyz : {&noisy, &torus, &sphere}) {
+        StageWatcher& watcher = watched[xyz];
+        watcher.stop_at_delaunay = false;
+        params.progress_user = &watcher;
+        REQUIRE(call(EntryPoint::reconstruct, *xyz, params).status == DBRG_OK);
+        for (int stage = DBRG_STAGE_VALIDATE; stage <= DBRG_STAGE_OUTPUT; ++stage) {
+            CAPTURE(stage);
+            std::vector<double> fractions;
+            for (const auto& r : watcher.reports) {
+                if (r.first == stage) fractions.push_back(r.second);
+            }
+            REQUIRE(!fractions.empty());
+            CHECK(fractions.front() == 0.0);
+            CHECK(fractions.back() == 1.0);
+        }
+    }
+
+    const dbrg_stage GROW = DBRG_STAGE_GROW, FILL = DBRG_STAGE_FILL_HOLES;
+    const double REGROWING = REGROW_PROGRESS_GROWING * FILL_PROGRESS_EARS;
+    // The first round of removing small handles: the first half of that pass.
+    const auto handles_round = [](double from, double to) {
+        const double begin = FILL_PROGRESS_HANDLES, length = (FILL_PROGRESS_FLIPS - FILL_PROGRESS_HANDLES) / 2;
+        return Window{DBRG_STAGE_FILL_HOLES, begin + from * length, begin + to * length};
+    };
+    const struct {
+        const char* pass;
+        const std::vector<double>& xyz;
+        Window window;
+    } passes[] = {
+        {"growing", noisy, {GROW, 0.0, GROW_PROGRESS_ISLANDS}},
+        {"removing islands", noisy, {GROW, GROW_PROGRESS_ISLANDS, GROW_PROGRESS_FLIPS}},
+        {"flipping edges", noisy, {GROW, GROW_PROGRESS_FLIPS, 1.0}},
+        {"regrowing: the holes' edges", noisy, {FILL, 0.0, REGROWING}},
+        {"regrowing: growing", noisy, {FILL, REGROWING, FILL_PROGRESS_EARS}},
+        {"ears", noisy, {FILL, FILL_PROGRESS_EARS, FILL_PROGRESS_ISLANDS}},
+        {"removing the islands of filling", noisy, {FILL, FILL_PROGRESS_ISLANDS, FILL_PROGRESS_HANDLES}},
+        {"handles: labelling components", noisy, handles_round(0.0, HANDLES_PROGRESS_TREE)},
+        {"handles: spanning tree", torus, handles_round(HANDLES_PROGRESS_TREE, HANDLES_PROGRESS_COTREE)},
+        {"handles: cotree", torus, handles_round(HANDLES_PROGRESS_COTREE, HANDLES_PROGRESS_CYCLES)},
+        {"handles: short cycles", torus, handles_round(HANDLES_PROGRESS_CYCLES, HANDLES_PROGRESS_CUTS)},
+        {"deferred flips", noisy, {FILL, FILL_PROGRESS_FLIPS, 1.0}},
+    };
+    for (const auto& pass : passes) {
+        CAPTURE(std::string(pass.pass));
+        REQUIRE(watched[&pass.xyz].count_inside(pass.window) >= 1);
+
+        test::CountingAllocator allocator;
+        StageWatcher cancelling;
+        cancelling.stop_at_delaunay = false;
+        cancelling.cancel_in = pass.window;
+        params.progress_user = &cancelling;
+        params.allocator = allocator.get();
+        CHECK(call(EntryPoint::reconstruct, pass.xyz, params).status == DBRG_ERR_CANCELLED);
+        // Cancelled inside the pass, and no report after that one.
+        CHECK(cancelling.count_inside(pass.window) == 1);
+        CHECK(cancelling.cancel_in.holds(cancelling.reports.back().first, cancelling.reports.back().second));
         require_nothing_held(allocator);
     }
 }

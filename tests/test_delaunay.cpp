@@ -531,6 +531,67 @@ TEST_CASE("the progress callback sees DBRG_STAGE_DELAUNAY and can cancel") {
     }
 }
 
+namespace {
+
+// The Delaunay stage's reports, and at each one how many tetrahedron slots the store under construction
+// has written.
+struct StoreWatch {
+    const Tetrahedralization* tets = nullptr;
+    std::vector<double> fractions;
+    std::vector<uint32_t> written;
+    static int report(void* user, dbrg_stage stage, double fraction) {
+        StoreWatch& self = *static_cast<StoreWatch*>(user);
+        if (stage != DBRG_STAGE_DELAUNAY) return 0;
+        self.fractions.push_back(fraction);
+        self.written.push_back(self.tets->tet_slots());
+        return 0;
+    }
+};
+
+// Tetrahedralizes `xyz` with `threads` threads, watching the store.
+StoreWatch watch_store(const std::vector<double>& xyz, uint32_t threads) {
+    StoreWatch watch;
+    dbrg_params params = test_params(nullptr, StoreWatch::report, &watch);
+    params.threads = threads;
+    Context context(params);
+    ConditionedPoints points(context.memory);
+    Tetrahedralization tets(context.memory);
+    watch.tets = &tets;
+    REQUIRE(condition_points(xyz.data(), xyz.size() / 3, context, points) == DBRG_OK);
+    REQUIRE(tets.build(points.coordinates.data(), points.size(), context) == DBRG_OK);
+    return watch;
+}
+
+} // namespace
+
+TEST_CASE("the tetrahedron store is written in steps between progress reports, not all at once") {
+    // 150,000 points: 900,000 slots reserved at the start, written 131,072 at a time as insertion needs
+    // them or ahead of need (while fewer than 32 per point inserted are written).
+    const StoreWatch watch = watch_store(random_cube(150000, 21), 1);
+    REQUIRE(watch.written.size() > 100);
+    uint32_t largest_step = 0;
+    for (size_t i = 1; i < watch.written.size(); ++i) {
+        if (watch.written[i] > watch.written[i - 1]) largest_step = std::max(largest_step, watch.written[i] - watch.written[i - 1]);
+    }
+    CHECK(largest_step > 0);
+    CHECK(largest_step <= 1u << 18);
+}
+
+TEST_CASE("threads sharing the last round: the calling thread reports all their points as they come in") {
+    // 200,000 points on two threads: the last round's three quarters are split in two. Counting only the
+    // calling thread's points, or not reporting while it waits for the other thread, leaves a jump of up
+    // to 37 % of the stage; the calling thread reports every 256 of its points, which with the other
+    // thread's move the fraction by about 0.3 % (more while the calling thread waits for a processor).
+    const StoreWatch watch = watch_store(random_cube(200000, 22), 2);
+    REQUIRE(watch.fractions.size() > 50);
+    double largest_jump = 0;
+    for (size_t i = 1; i < watch.fractions.size(); ++i) {
+        largest_jump = std::max(largest_jump, watch.fractions[i] - watch.fractions[i - 1]);
+    }
+    CHECK(watch.fractions.back() == 1.0);
+    CHECK(largest_jump < 0.25);
+}
+
 TEST_CASE("the TetGen backend's availability matches the build") {
     Context context(test_params());
     Tetrahedralization tets(context.memory);

@@ -18,6 +18,7 @@
 #include "grow/boundary_causes.h"
 #include "holes/face_journal.h"
 #include "holes/hole_filling.h"
+#include "support/counting_allocator.h"
 
 using namespace dbrg;
 
@@ -183,8 +184,9 @@ namespace {
 // faces, given in the points' own numbering, have no tetrahedron. Every boundary edge counts as one where
 // growing found only invalid candidates until mark_open says otherwise.
 struct HandMade {
-    HandMade(const std::vector<double>& xyz, const std::vector<Triangle>& faces, uint32_t max_hole_edges = 64)
-        : context(params_with(max_hole_edges)),
+    HandMade(const std::vector<double>& xyz, const std::vector<Triangle>& faces, uint32_t max_hole_edges = 64,
+             const dbrg_allocator* allocator = nullptr)
+        : context(params_with(max_hole_edges, allocator)),
           points(context.memory),
           delaunay(context.memory),
           surface(context.memory),
@@ -198,10 +200,11 @@ struct HandMade {
         for (const Triangle& t : faces) REQUIRE(surface.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]], NO_TET) != NO_FACE);
         require_valid(surface);
     }
-    static dbrg_params params_with(uint32_t max_hole_edges) {
+    static dbrg_params params_with(uint32_t max_hole_edges, const dbrg_allocator* allocator) {
         dbrg_params params;
         fill_default_params(params);
         params.max_hole_edges = max_hole_edges;
+        params.allocator = allocator;
         return params;
     }
 
@@ -235,10 +238,11 @@ struct HandMade {
     // start from on these faces.
     void fill_holes() {
         HoleFiller filler(delaunay, surface, causes, context);
+        const ProgressSpan progress(context, DBRG_STAGE_FILL_HOLES);
         bool found = false;
         REQUIRE(filler.find_holes(found) == DBRG_OK);
-        if (found) REQUIRE(filler.fill_with_ears() == DBRG_OK);
-        REQUIRE(filler.remove_small_handles() == DBRG_OK);
+        if (found) REQUIRE(filler.fill_with_ears(progress, progress) == DBRG_OK);
+        REQUIRE(filler.remove_small_handles(progress) == DBRG_OK);
         require_valid(surface);
     }
 
@@ -401,6 +405,60 @@ TEST_CASE("a handle whose short cycles are short in space is cut and both sides 
         made.fill_holes();
         CHECK(made.context.stats.handles_removed == (tube.noise ? 1 : 0));
         CHECK(made.genus() == (tube.noise ? 0 : 1));
+    }
+}
+
+namespace {
+
+// A share of the stage's progress, with its start and without its end.
+struct Window {
+    double from, to;
+    bool holds(double fraction) const { return fraction >= from && fraction < to; }
+};
+
+// Counts the reports inside a window, and with `cancel` cancels at the first one.
+struct Reports {
+    Window window;
+    bool cancel;
+    uint32_t inside = 0;
+    double last = -1;
+    static int record(void* user, dbrg_stage, double fraction) {
+        Reports& self = *static_cast<Reports*>(user);
+        self.last = fraction;
+        self.inside += self.window.holds(fraction) ? 1 : 0;
+        return self.cancel && self.window.holds(fraction) ? 1 : 0;
+    }
+};
+
+} // namespace
+
+TEST_CASE("cutting a small handle reports inside the cuts' share, and a cancel there leaves nothing held") {
+    // The thin tube above, with the whole stage's progress given to removing handles: its first round
+    // takes the first half, and the cuts the end of that. Each cut measures the surface again, reporting
+    // as it starts (the passes before report below the cuts' share).
+    const Window cuts{0.5 * HANDLES_PROGRESS_CUTS, 0.5};
+    for (const bool cancel : {false, true}) {
+        CAPTURE(cancel);
+        test::CountingAllocator allocator;
+        Reports reports{cuts, cancel};
+        dbrg_status status;
+        {
+            HandMade made(torus_points(12, 3, 1.0, 0.1), torus_faces(12, 3), 64, allocator.get());
+            made.context.progress = Progress(Reports::record, &reports);
+            HoleFiller filler(made.delaunay, made.surface, made.causes, made.context);
+            status = filler.remove_small_handles(ProgressSpan(made.context, DBRG_STAGE_FILL_HOLES));
+            CHECK(made.context.stats.handles_removed == (cancel ? 0 : 1));
+        }
+        CHECK(allocator.live_blocks() == 0);
+        CHECK(allocator.contract_violations() == 0);
+        if (!cancel) {
+            CHECK(status == DBRG_OK);
+            CHECK(reports.inside >= 1);
+        } else {
+            CHECK(status == DBRG_ERR_CANCELLED);
+            CHECK(reports.inside == 1);
+            CHECK(cuts.holds(reports.last));  // nothing reported after the cancel
+        }
     }
 }
 

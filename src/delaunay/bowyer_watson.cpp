@@ -387,6 +387,7 @@ dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_
     points_ = points;
     order_ = &order;
     count_ = n;
+    DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, 0.0));
     DBRG_PROPAGATE(start());
     inserted_ = 4;
     const uint32_t parts = std::min(part_count(context_.params.threads, n, MIN_POINTS_PER_THREAD), MAX_INSERTION_THREADS);
@@ -395,7 +396,10 @@ dbrg_status DelaunayBuilder::run(const double* points, BrioOrder& order, uint32_
     while (more) {
         v = next;
         more = next_vertex(next);
-        if (inserted_ % PROGRESS_INTERVAL == 0) DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(inserted_) / n));
+        if (inserted_ % PROGRESS_INTERVAL == 0) {
+            DBRG_PROPAGATE(context_.report(DBRG_STAGE_DELAUNAY, double(inserted_) / n));
+            DBRG_PROPAGATE(write_store_ahead());
+        }
         DBRG_PROPAGATE(insert<false>(main_, v, more ? point(next) : nullptr));
         ++inserted_;
         if (more && parts > 1 && pending_next_ == pending_.size() && order.in_last_round()) {

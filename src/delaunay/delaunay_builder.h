@@ -15,7 +15,11 @@
 
 namespace dbrg {
 
-constexpr uint32_t PROGRESS_INTERVAL = 4096;
+// Insertion reports progress every this many points: a few milliseconds even where insertions are slow
+// (surface samples with many needle-shaped tetrahedra). Context passes on steps of 0.1 % of the stage.
+constexpr uint32_t PROGRESS_INTERVAL = 256;
+// The store is written or mapped in steps of this many slots: a millisecond or two each.
+constexpr size_t WRITE_STEP_SLOTS = 1 << 17;
 constexpr uint64_t WALK_SEED = 0xbb67ae8584caa73bull;
 // Shared insertion of the last BRIO round runs on at most this many threads: each needs a mark below
 // 256 and about 300 KB of scratch space.
@@ -117,10 +121,15 @@ private:
         return static_cast<uint32_t>(in.random >> 32);
     }
 
-    // Tetrahedron slots (tet_slots.cpp).
+    // Tetrahedron slots (tet_slots.cpp). The store's arrays have room (capacity) for more slots than they
+    // have written (size), and written more than are in use (slot_end_).
     template <bool Shared> dbrg_status take_slot(Inserter& in, uint32_t& slot);
     dbrg_status size_initial_store();
-    dbrg_status size_store(size_t slots);
+    dbrg_status reserve_store(size_t slots);
+    dbrg_status write_store(size_t slots);
+    dbrg_status extend_store();
+    dbrg_status write_store_ahead();
+    void map_store(size_t from, size_t to);
     size_t projected_slots() const;
     void hand_back_chunk(Inserter& in);
     void refresh_pointers() {
@@ -137,7 +146,8 @@ private:
     // Shared insertion of the last BRIO round (parallel_insertion.cpp).
     dbrg_status insert_last_round(uint32_t parts);
     dbrg_status prepare_inserter(Inserter& in, uint32_t part, uint32_t deferred_room);
-    void insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, dbrg_status& status);
+    void insert_slice(Inserter& in, BrioOrder::Slice& slice, bool reporting, dbrg_status& status);
+    dbrg_status report_round();
     void release_claims(Inserter& in);
     bool room_for(Inserter& in, size_t faces, size_t cavity_size);
     // Claims tetrahedron t for the thread, or answers false when another thread holds it or the thread's
@@ -171,10 +181,12 @@ private:
     size_t pending_next_ = 0;
 
     // Shared insertion: per slot, the mark of the thread that claimed it (0: none); the next slot not yet
-    // handed to a thread; a flag that tells the threads to stop.
+    // handed to a thread; a flag that tells the threads to stop; about how many points the threads have
+    // inserted (each adds its count in steps), for the calling thread's progress reports.
     Array<uint8_t> claims_;
     std::atomic<uint32_t> next_chunk_{0};
     std::atomic<bool> stop_{false};
+    std::atomic<uint32_t> round_inserted_{0};
 };
 
 } // namespace dbrg

@@ -2,7 +2,9 @@
 // tetrahedra it reads and taking slots from chunks of a store sized beforehand.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <optional>
+#include <thread>
 
 #include "core/parallel.h"
 #include "core/status.h"
@@ -19,6 +21,13 @@ constexpr size_t MAX_SHARED_FACES = 2048;
 constexpr size_t MAX_SHARED_HELD = 8192;
 constexpr uint32_t CHUNK_SLOTS = 1024;
 constexpr uint32_t DEFERRED_SHARE = 8;
+// Each thread adds its count of points inserted to round_inserted_ this many at a time (the counter's cache
+// line is shared); the calling thread looks at the others this often while it waits for them.
+constexpr uint32_t COUNT_STEP = 64;
+constexpr std::chrono::milliseconds WATCH_INTERVAL(1);
+
+// Whether a part of the round is still to run, running or done.
+enum : uint8_t { PART_WAITING, PART_RUNNING, PART_DONE };
 
 } // namespace
 
@@ -30,7 +39,9 @@ constexpr uint32_t DEFERRED_SHARE = 8;
 // afterwards. The tetrahedralization of a point set does not depend on the insertion order, so the
 // tetrahedra are the same as with one thread (their slots differ). Threads take new slots in chunks
 // from a store sized beforehand and never allocate: what needs more room than their fixed scratch space
-// is given up too. A thread that finds the store full stops; the store grows and they go on.
+// is given up too. A thread that finds the store full stops; the store grows and they go on. The calling
+// thread reports progress for all of them, and once its own stretch is in, goes on reporting while it
+// waits for theirs.
 dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
     std::optional<Inserter> others[MAX_INSERTION_THREADS];
     Inserter* inserters[MAX_INSERTION_THREADS] = {&main_};
@@ -49,8 +60,13 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
     uint32_t anchor = main_.hint;  // a live tetrahedron
     bool store_full = true;
     while (store_full) {
+        // Every reserved slot is the threads' to take. Those not written yet the calling thread maps
+        // while the others start inserting (a thread writes a slot before it uses it).
         const size_t slots = std::max(projected_slots(), size_t(slot_end_) + size_t(CHUNK_SLOTS) * parts);
-        if (4 * slots > out_.vertices_.size()) DBRG_PROPAGATE(size_store(std::min<size_t>(slots, MAX_TET_SLOTS)));
+        if (4 * slots > out_.vertices_.size()) DBRG_PROPAGATE(reserve_store(std::min<size_t>(slots, MAX_TET_SLOTS)));
+        const size_t written = out_.vertices_.size() / 4;
+        out_.vertices_.resize_unwritten(out_.vertices_.capacity());
+        out_.adjacency_.resize_unwritten(out_.vertices_.capacity());
         const uint32_t capacity = static_cast<uint32_t>(out_.vertices_.size() / 4);
         claims_.clear();
         if (!claims_.resize(capacity, 0)) return context_.fail_out_of_memory();
@@ -75,8 +91,44 @@ dbrg_status DelaunayBuilder::insert_last_round(uint32_t parts) {
             in.held.push_back(in.hint);  // within the capacity prepare_inserter reserved
             active[part] = true;
         }
+        round_inserted_.store(0, std::memory_order_relaxed);
+        std::atomic<uint8_t> state[MAX_INSERTION_THREADS];
+        for (uint32_t part = 0; part < parts; ++part) state[part].store(active[part] ? PART_WAITING : PART_DONE);
+        // Each part runs once: on its thread, or on the calling thread (which reports) when that is done
+        // with its own part before the part's thread has started it (a thread the system refused to start
+        // never does: its part would wait until part 0 returns).
+        const auto run_once = [&](uint32_t part, bool calling_thread) {
+            uint8_t waiting = PART_WAITING;
+            if (!state[part].compare_exchange_strong(waiting, PART_RUNNING, std::memory_order_acquire)) return;
+            insert_slice(*inserters[part], slices[part], calling_thread, statuses[part]);
+            state[part].store(PART_DONE, std::memory_order_release);
+        };
+        // The calling thread maps the store, inserts its own part, takes over the parts no thread has
+        // started, and reports the others' points as they come in until the last part is done. It stops
+        // every part when the caller cancels.
+        const auto report_or_stop = [&]() {
+            statuses[0] = report_round();
+            if (statuses[0] != DBRG_OK) stop_.store(true, std::memory_order_relaxed);
+            return statuses[0] == DBRG_OK;
+        };
         run_parts(parts, [&](uint32_t part) {
-            if (active[part]) insert_slice(*inserters[part], slices[part], part, statuses[part]);
+            if (part != 0) return run_once(part, false);
+            bool going = true;
+            for (size_t from = written; going && from < capacity; from += WRITE_STEP_SLOTS) {
+                going = report_or_stop();
+                if (going) map_store(from, std::min<size_t>(from + WRITE_STEP_SLOTS, capacity));
+            }
+            if (going) run_once(0, true);
+            for (uint32_t other = 1; other < parts; ++other) run_once(other, true);
+            for (;;) {
+                bool running = false;
+                for (uint32_t other = 1; other < parts; ++other) {
+                    running = running || state[other].load(std::memory_order_acquire) != PART_DONE;
+                }
+                if (!running) break;
+                if (statuses[0] == DBRG_OK) report_or_stop();
+                std::this_thread::sleep_for(WATCH_INTERVAL);
+            }
         });
         // The calling thread alone again.
         slot_end_ = std::min(next_chunk_.load(std::memory_order_relaxed), capacity);
@@ -138,10 +190,9 @@ dbrg_status DelaunayBuilder::prepare_inserter(Inserter& in, uint32_t part, uint3
 }
 
 // One thread's stretch. Points it sets aside are listed for the calling thread; once that list is full,
-// or the store is, the thread stops and leaves the rest of its stretch in `slice`. The calling thread's
-// part also reports progress (counting its own points only, so that the fraction never runs ahead) and
-// stops every part when the caller cancels.
-void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32_t part, dbrg_status& status) {
+// or the store is, the thread stops and leaves the rest of its stretch in `slice`. On the calling thread
+// (`reporting`) it also reports progress and stops every part when the caller cancels.
+void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, bool reporting, dbrg_status& status) {
     uint32_t next_at = slice.position(), next, steps = 0;
     bool more = slice.next(next);
     while (more && !stop_.load(std::memory_order_relaxed)) {
@@ -154,15 +205,15 @@ void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32
             return;
         }
         if (!in.left_out) {
-            ++in.inserted;
+            if (++in.inserted % COUNT_STEP == 0) round_inserted_.fetch_add(COUNT_STEP, std::memory_order_relaxed);
         } else if (!in.out_of_slots && in.deferred.size() < in.deferred.capacity()) {
             in.deferred.push_back(v);
         } else {
             slice.rewind(v_at);
             return;
         }
-        if (part == 0 && ++steps % PROGRESS_INTERVAL == 0) {
-            status = context_.report(DBRG_STAGE_DELAUNAY, double(inserted_ + in.inserted) / count_);
+        if (reporting && ++steps % PROGRESS_INTERVAL == 0) {
+            status = report_round();
             if (status != DBRG_OK) {
                 stop_.store(true, std::memory_order_relaxed);
                 return;
@@ -170,6 +221,11 @@ void DelaunayBuilder::insert_slice(Inserter& in, BrioOrder::Slice& slice, uint32
         }
     }
     if (more) slice.rewind(next_at);
+}
+
+// The points inserted before the round and, about, those its threads have inserted so far.
+dbrg_status DelaunayBuilder::report_round() {
+    return context_.report(DBRG_STAGE_DELAUNAY, double(inserted_ + round_inserted_.load(std::memory_order_relaxed)) / count_);
 }
 
 // Lets go of every claim but the hint's, which the next walk starts from.

@@ -1,5 +1,5 @@
 // Tetrahedron slots during construction: taken from a thread's free list or chunk or from the end of the
-// store, which is sized ahead of need and written on several threads.
+// store, which is reserved ahead of need and written in steps.
 #include <algorithm>
 #if defined(__linux__)
 #include <errno.h>
@@ -25,6 +25,11 @@ constexpr size_t GROWTH_DIVISOR = 16;
 constexpr double PROJECTION_MARGIN = 1.05;
 // Below this many new store entries per thread, a thread costs more to start than the fill it takes over.
 constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 18;
+// Sequential insertion writes the reserved store in steps of WRITE_STEP_SLOTS slots (a millisecond or two
+// each, between progress reports) as it needs them, and ahead of need while fewer than this many per point
+// inserted are written: the initial reservation (6 per point) is then written within the first fifth of
+// the points, before the last BRIO round (three quarters of them) starts.
+constexpr size_t SLOTS_AHEAD_PER_POINT = 32;
 
 // Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
 // page fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
@@ -64,10 +69,7 @@ dbrg_status DelaunayBuilder::take_slot(Inserter& in, uint32_t& slot) {
             return context_.fail(DBRG_ERR_TOO_MANY_POINTS, "the tetrahedralization needs more than %u tetrahedra",
                                  MAX_TET_SLOTS);
         }
-        if (4 * slots == out_.vertices_.size()) {
-            const size_t grown = slots + slots / GROWTH_DIVISOR + 64;
-            DBRG_PROPAGATE(size_store(std::min<size_t>(std::max(grown, projected_slots()), MAX_TET_SLOTS)));
-        }
+        if (4 * slots == out_.vertices_.size()) DBRG_PROPAGATE(extend_store());
         slot = slot_end_++;
         return DBRG_OK;
     }
@@ -78,10 +80,28 @@ dbrg_status DelaunayBuilder::take_slot(Inserter& in, uint32_t& slot) {
 template dbrg_status DelaunayBuilder::take_slot<false>(Inserter& in, uint32_t& slot);
 template dbrg_status DelaunayBuilder::take_slot<true>(Inserter& in, uint32_t& slot);
 
-// The store for the first points: room for the expected tetrahedra of all of them.
+// The store for the first points: room for the expected tetrahedra of all of them, its first step written.
 dbrg_status DelaunayBuilder::size_initial_store() {
     const double expected = EXPECTED_TETS_PER_POINT * count_ + 64;
-    return size_store(static_cast<size_t>(expected < MAX_TET_SLOTS ? expected : MAX_TET_SLOTS));
+    DBRG_PROPAGATE(reserve_store(static_cast<size_t>(expected < MAX_TET_SLOTS ? expected : MAX_TET_SLOTS)));
+    return write_store(WRITE_STEP_SLOTS);
+}
+
+// Sequential insertion has used every written slot: the next step of the reserved ones, after reserving
+// more when those are all written.
+dbrg_status DelaunayBuilder::extend_store() {
+    const size_t slots = slot_end_;
+    if (4 * slots == out_.vertices_.capacity()) {
+        const size_t grown = slots + slots / GROWTH_DIVISOR + 64;
+        DBRG_PROPAGATE(reserve_store(std::min<size_t>(std::max(grown, projected_slots()), MAX_TET_SLOTS)));
+    }
+    return write_store(slots + WRITE_STEP_SLOTS);
+}
+
+// Called at every progress interval of sequential insertion.
+dbrg_status DelaunayBuilder::write_store_ahead() {
+    const size_t written = out_.vertices_.size() / 4;
+    return written < SLOTS_AHEAD_PER_POINT * inserted_ ? write_store(written + WRITE_STEP_SLOTS) : DBRG_OK;
 }
 
 // The slots the tetrahedralization will need: the tetrahedra per point inserted so far (BRIO spreads
@@ -94,16 +114,24 @@ size_t DelaunayBuilder::projected_slots() const {
     return projected < MAX_TET_SLOTS ? static_cast<size_t>(projected) : MAX_TET_SLOTS;
 }
 
-dbrg_status DelaunayBuilder::size_store(size_t slots) {
-    // The arrays are sized (and so written) for `slots` slots at once, in one fill split among the threads,
+// Room for `slots` slots; nothing is written.
+dbrg_status DelaunayBuilder::reserve_store(size_t slots) {
+    if (!out_.vertices_.reserve(4 * slots) || !out_.adjacency_.reserve(4 * slots)) return context_.fail_out_of_memory();
+    refresh_pointers();
+    return DBRG_OK;
+}
+
+// Writes the reserved slots up to `slots` (at most the room there is).
+dbrg_status DelaunayBuilder::write_store(size_t slots) {
+    // The arrays are sized (and so written) for many slots at once, in one fill split among the threads,
     // rather than four entries as each slot is taken: such small writes each wait for a new cache line, at
     // a cost of about a tenth of the insertion time. slot_end_ counts the slots in use; run() cuts the
     // arrays' size to it (the spare capacity, about 1 %, stays allocated).
     Array<uint32_t>& vertices = out_.vertices_;
     Array<uint32_t>& adjacency = out_.adjacency_;
     const size_t old_size = vertices.size();
-    if (!vertices.reserve(4 * slots) || !adjacency.reserve(4 * slots)) return context_.fail_out_of_memory();
-    const size_t new_size = 4 * slots;
+    const size_t new_size = std::min(4 * slots, vertices.capacity());
+    if (new_size <= old_size) return DBRG_OK;
     uint32_t* const vertex_ids = vertices.data() + old_size;
     uint32_t* const neighbours = adjacency.data() + old_size;
     const uint32_t parts = part_count(context_.params.threads, new_size - old_size, MIN_ENTRIES_PER_FILL_THREAD);
@@ -117,6 +145,13 @@ dbrg_status DelaunayBuilder::size_store(size_t slots) {
     adjacency.resize_unwritten(new_size);
     refresh_pointers();
     return DBRG_OK;
+}
+
+// Maps the pages of slots `from` to `to` without writing them: the threads of the last round may be
+// writing some of those slots meanwhile, and mapping leaves what a page holds as it is.
+void DelaunayBuilder::map_store(size_t from, size_t to) {
+    populate(memory_, vertex_ + 4 * from, 4 * (to - from) * sizeof(uint32_t));
+    populate(memory_, adjacency_ + 4 * from, 4 * (to - from) * sizeof(uint32_t));
 }
 
 // The unused rest of the thread's chunk goes onto its free list.

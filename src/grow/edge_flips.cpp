@@ -10,6 +10,12 @@
 #include "grow/triangle_geometry.h"
 
 namespace dbrg {
+namespace {
+
+// Progress is reported every this many faces or edges visited: at most a few milliseconds of visits.
+constexpr size_t REPORT_VISITS = 1 << 12;
+
+} // namespace
 
 EdgeFlipper::EdgeFlipper(const Tetrahedralization& delaunay, Surface& surface, Context& context)
     : delaunay_(delaunay),
@@ -19,11 +25,12 @@ EdgeFlipper::EdgeFlipper(const Tetrahedralization& delaunay, Surface& surface, C
       deferred_(context.memory),
       revisit_(context.memory) {}
 
-dbrg_status EdgeFlipper::flip_all(double& radius_sum) {
+dbrg_status EdgeFlipper::flip_all(double& radius_sum, const ProgressSpan& progress) {
     // Faces the flips add are not visited from here: their outer edges are visited again by visit(), and
     // their inner edge stays, as flipping it back would make the balls larger again.
     const uint32_t faces = surface_.face_count();
     for (uint32_t f = 0; f < faces; ++f) {
+        DBRG_PROPAGATE(progress.report_at(f, faces, REPORT_VISITS));
         for (uint32_t h = 3 * f; h < 3 * f + 3 && !surface_.face_removed(f); ++h) {
             const uint32_t twin = surface_.twin(h);
             if (twin != NO_HALFEDGE && h < twin) DBRG_PROPAGATE(visit(h, radius_sum));
@@ -34,17 +41,25 @@ dbrg_status EdgeFlipper::flip_all(double& radius_sum) {
     return DBRG_OK;
 }
 
-dbrg_status EdgeFlipper::flip_deferred() {
+dbrg_status EdgeFlipper::flip_deferred(const ProgressSpan& progress) {
     // No sum of radii to keep from here on: the open-surface test is done with.
     double radius_sum = 0;
     Array<uint32_t> edges(context_.memory);
     edges.swap(deferred_);
-    for (uint32_t h : edges) DBRG_PROPAGATE(visit(h, radius_sum));
+    // Progress counts the listed edges, then the faces.
+    const uint32_t faces = surface_.face_count();
+    const size_t items = edges.size() + (faces - faces_after_flip_all_);
+    size_t item = 0;
+    const auto report_item = [&]() { return progress.report_at(item++, items, REPORT_VISITS); };
+    for (uint32_t h : edges) {
+        DBRG_PROPAGATE(report_item());
+        DBRG_PROPAGATE(visit(h, radius_sum));
+    }
     // The edges of the faces added since flip_all, once each: the rims of the holes that filling closed
     // (boundary edges while growing, so never deferred), and deferred edges whose faces filling removed
     // and put back under new ids (their listed ids are stale).
-    const uint32_t faces = surface_.face_count();
     for (uint32_t f = faces_after_flip_all_; f < faces; ++f) {
+        DBRG_PROPAGATE(report_item());
         for (uint32_t h = 3 * f; h < 3 * f + 3 && !surface_.face_removed(f); ++h) {
             const uint32_t twin = surface_.twin(h);
             if (twin != NO_HALFEDGE && (h < twin || Surface::face_of(twin) < faces_after_flip_all_)) {

@@ -10,6 +10,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "core/progress_span.h"
 #include "delaunay/tetrahedralization.h"
 #include "surface/surface.h"
 
@@ -30,12 +31,14 @@ public:
 
     // Visits every interior edge of S once, flipping where decide() says so and then visiting the four
     // outer edges of the flipped pair again. Edges with a corner on the boundary of S are remembered for
-    // flip_deferred. `radius_sum`, the sum of the circumradii of S's faces, follows the flips.
-    dbrg_status flip_all(double& radius_sum);
+    // flip_deferred. `radius_sum`, the sum of the circumradii of S's faces, follows the flips. Reports
+    // to `progress`.
+    dbrg_status flip_all(double& radius_sum, const ProgressSpan& progress);
 
     // Visits the remembered edges again, and the edges of every face added since flip_all: for after hole
-    // filling, which closes the boundary those edges waited on and changes what is around them.
-    dbrg_status flip_deferred();
+    // filling, which closes the boundary those edges waited on and changes what is around them. Reports
+    // to `progress`.
+    dbrg_status flip_deferred(const ProgressSpan& progress);
 
     enum class Decision { keep, defer, flip };
     // What a visit would do with the edge of `halfedge` now: flip it to the other two faces of tetrahedron

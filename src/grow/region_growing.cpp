@@ -26,6 +26,12 @@ bool reserve_after_compaction(Container& container) {
     return container.size() <= capacity - capacity / 4 || container.reserve(capacity < 8 ? 8 : 2 * capacity);
 }
 
+// Growing reports its progress every this many candidates taken from the queue: a few milliseconds at most,
+// whether they add faces or, as while the last holes close, mostly do not.
+const uint32_t REPORT_CANDIDATES = 1024;
+// And regrowing the holes every this many half-edges looked at for a hole's edge: a few milliseconds.
+const uint32_t REPORT_HALFEDGES = 1 << 16;
+
 // A component grown from a later seed must reach this many faces to count as a second object; fewer are
 // stray points (noise, outliers), removed at the end if they stay apart.
 const uint32_t MIN_SEEDED_COMPONENT_FACES = 16;
@@ -51,6 +57,9 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       flipper_(delaunay, surface, context) {}
 
 dbrg_status RegionGrower::grow() {
+    const ProgressSpan stage(context_, DBRG_STAGE_GROW);
+    const ProgressSpan growing = stage.part(0, GROW_PROGRESS_ISLANDS);
+    DBRG_PROPAGATE(stage.report(0, 1));
     const uint32_t n = delaunay_.vertex_count();
     // A closed surface through all n points has 2n - 4 faces: reserve that at once rather than grow by halves.
     const size_t expected_faces = 2 * size_t(n);
@@ -70,7 +79,7 @@ dbrg_status RegionGrower::grow() {
     uint32_t first = 0;
     for (uint32_t v = 1; v < n; ++v) first = before(v, first) ? v : first;
     Array<uint32_t> removed(context_.memory);
-    DBRG_PROPAGATE(try_seed(first, removed));
+    DBRG_PROPAGATE(try_seed(first, removed, growing));
     // The others: the vertices after it that are unused now, in order, and those that pinch removal frees
     // later while their turn is still to come (`freed`, kept in order, read alongside).
     Array<uint32_t> pending(context_.memory), freed(context_.memory);
@@ -90,7 +99,7 @@ dbrg_status RegionGrower::grow() {
         }
         if (surface_.is_used(v)) continue;
         removed.clear();
-        DBRG_PROPAGATE(try_seed(v, removed));
+        DBRG_PROPAGATE(try_seed(v, removed, growing));
         for (uint32_t f : removed) {
             for (uint32_t i = 0; i < 3; ++i) {
                 const uint32_t w = surface_.corner(f, i);
@@ -107,22 +116,22 @@ dbrg_status RegionGrower::grow() {
         }
     }
     release_queues();
-    DBRG_PROPAGATE(remove_islands());
-    DBRG_PROPAGATE(flipper_.flip_all(radius_sum_));
+    DBRG_PROPAGATE(remove_islands(stage.part(GROW_PROGRESS_ISLANDS, GROW_PROGRESS_FLIPS)));
+    DBRG_PROPAGATE(flipper_.flip_all(radius_sum_, stage.part(GROW_PROGRESS_FLIPS, 1)));
     context_.stats.components = components_;  // the output stage recounts after hole filling
-    return context_.report(DBRG_STAGE_GROW, 1.0);
+    return stage.report(1, 1);
 }
 
 // Tries vertex v as a seed: grows a component from its seed triangle, if it has one, and resolves the
 // pinches left. Appends the faces that pinch resolution removed to `removed`.
-dbrg_status RegionGrower::try_seed(uint32_t v, Array<uint32_t>& removed) {
+dbrg_status RegionGrower::try_seed(uint32_t v, Array<uint32_t>& removed, const ProgressSpan& progress) {
     uint32_t corners[3], tet;
     const bool seeded = find_seed(v, corners, tet);
     if (context_.memory.failed()) return context_.fail_out_of_memory();
     if (!seeded) return DBRG_OK;
     const uint32_t faces_before = surface_.live_face_count();
     DBRG_PROPAGATE(add_face(corners[0], corners[1], corners[2], tet));
-    DBRG_PROPAGATE(grow_component());
+    DBRG_PROPAGATE(grow_component(progress));
     DBRG_PROPAGATE(resolve_pinches(removed));
     // A seed that grew only a few faces (stray points) does not count against max_components; if its
     // faces stay apart from everything else, they go with the islands below. (It may also have joined an
@@ -163,10 +172,10 @@ bool RegionGrower::find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet
     return true;
 }
 
-dbrg_status RegionGrower::grow_component() {
+dbrg_status RegionGrower::grow_component(const ProgressSpan& progress) {
     // Postponed candidates get one more chance each time the queue runs dry.
     for (;;) {
-        DBRG_PROPAGATE(drain_queue());
+        DBRG_PROPAGATE(drain_queue(progress));
         if (postponed_.empty()) return DBRG_OK;
         for (const Candidate& c : postponed_) {
             if (!enqueue(c)) return context_.fail_out_of_memory();
@@ -175,10 +184,11 @@ dbrg_status RegionGrower::grow_component() {
     }
 }
 
-dbrg_status RegionGrower::drain_queue() {
+dbrg_status RegionGrower::drain_queue(const ProgressSpan& progress) {
     dbrg_stats& stats = context_.stats;
-    uint32_t steps = 0;
+    uint32_t taken = 0;
     while (!queue_.empty()) {
+        if (++taken % REPORT_CANDIDATES == 0) DBRG_PROPAGATE(report_grown(progress));
         Candidate c = queue_.pop();
         // A boundary half-edge has at most one candidate, in the queue or postponed, at any time: one is
         // computed when the half-edge appears and after the last one was rejected, and regrow_holes computes
@@ -213,11 +223,16 @@ dbrg_status RegionGrower::drain_queue() {
         }
         const uint32_t h = c.halfedge;
         DBRG_PROPAGATE(add_face(surface_.target(h), surface_.origin(h), c.apex, c.tet, &check));
-        if (++steps % 1024 == 0) {
-            DBRG_PROPAGATE(context_.report(DBRG_STAGE_GROW, points_reached(delaunay_, surface_)));
-        }
     }
     return DBRG_OK;
+}
+
+// How far growing has come: the faces of S over the 2n - 4 or so of a closed surface through all n points.
+// (The share of points reached, which the step observers see, stalls while the last holes close, with up
+// to a tenth of the work left at a million points. An open surface ends short of 1.)
+dbrg_status RegionGrower::report_grown(const ProgressSpan& progress) const {
+    const size_t closed_faces = 2 * size_t(delaunay_.vertex_count());
+    return progress.report(std::min<size_t>(surface_.live_face_count(), closed_faces), closed_faces);
 }
 
 dbrg_status RegionGrower::postpone(Candidate c) {
@@ -403,13 +418,15 @@ dbrg_status RegionGrower::report_step() const {
     return observer_ ? observer_(observer_user_, surface_, points_reached(delaunay_, surface_)) : DBRG_OK;
 }
 
-dbrg_status RegionGrower::regrow_holes() {
+dbrg_status RegionGrower::regrow_holes(const ProgressSpan& progress) {
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
+    const ProgressSpan proposing = progress.part(0, REGROW_PROGRESS_GROWING);
     for (uint32_t h = 0; h < halfedges; ++h) {
+        DBRG_PROPAGATE(proposing.report_at(h, halfedges, REPORT_HALFEDGES));
         if (surface_.is_boundary(h) && causes_.of(h) == BOUNDARY_UNRESOLVED) DBRG_PROPAGATE(propose(h, nullptr));
     }
-    DBRG_PROPAGATE(grow_component());
+    DBRG_PROPAGATE(grow_component(progress.part(REGROW_PROGRESS_GROWING, 1)));
     release_queues();
     Array<uint32_t> removed(context_.memory);
     DBRG_PROPAGATE(resolve_pinches(removed));
@@ -425,9 +442,13 @@ void RegionGrower::release_queues() {
 }
 
 // Cutting pinches can leave a few faces joined to nothing else: an island is no object of its own.
-dbrg_status RegionGrower::remove_islands() {
+dbrg_status RegionGrower::remove_islands(const ProgressSpan& progress) {
     Array<uint32_t> removed(context_.memory);
-    if (!surface_.remove_small_components(MIN_SEEDED_COMPONENT_FACES, removed)) return context_.fail_out_of_memory();
+    dbrg_status status = DBRG_OK;
+    const auto between = [&](size_t done, size_t total) { return (status = progress.report(done, total)) == DBRG_OK; };
+    if (!surface_.remove_small_components(MIN_SEEDED_COMPONENT_FACES, removed, between)) {
+        return status != DBRG_OK ? status : context_.fail_out_of_memory();
+    }
     for (uint32_t f : removed) radius_sum_ -= face_radius(delaunay_, surface_, f);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size());
     return DBRG_OK;

@@ -9,6 +9,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "core/progress_span.h"
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/boundary_causes.h"
@@ -18,23 +19,32 @@
 
 namespace dbrg {
 
+// Where the passes of RegionGrower::grow() start in DBRG_STAGE_GROW's progress, each ending where the next
+// starts (about their shares of the time on large inputs): growing S from 0, removing islands, flipping edges.
+constexpr double GROW_PROGRESS_ISLANDS = 0.92;
+constexpr double GROW_PROGRESS_FLIPS = 0.94;
+// Where regrow_holes's growing starts in its share of progress, after looking for the holes' edges.
+constexpr double REGROW_PROGRESS_GROWING = 0.5;
+
 class RegionGrower {
 public:
     RegionGrower(const Tetrahedralization& delaunay, Surface& surface, Context& context);
 
     // Grows S from the highest point, then from further seeds while unused points can start a
-    // component of their own (up to params.max_components), then flips edges inside S to the smaller
-    // Delaunay balls (EdgeFlipper::flip_all). Fills the growing fields of context.stats.
+    // component of their own (up to params.max_components), removes islands, then flips edges inside S to
+    // the smaller Delaunay balls (EdgeFlipper::flip_all). Reports DBRG_STAGE_GROW progress, growing S as
+    // the share of the faces of a closed surface through all points that it has. Fills the growing fields
+    // of context.stats.
     dbrg_status grow();
 
     // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
     // changed around it since it was last examined. The first step of hole filling (§5): Delaunay
-    // triangles before ears. Adds context.stats.hole_triangles_delaunay.
-    dbrg_status regrow_holes();
+    // triangles before ears. Adds context.stats.hole_triangles_delaunay. Reports to `progress`.
+    dbrg_status regrow_holes(const ProgressSpan& progress);
 
     // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
     // those around the faces added since: the last step of hole filling, once the holes are closed.
-    dbrg_status flip_deferred() { return flipper_.flip_deferred(); }
+    dbrg_status flip_deferred(const ProgressSpan& progress) { return flipper_.flip_deferred(progress); }
     const EdgeFlipper& edge_flips() const { return flipper_; }
 
     // Called after every face added to S, flips included (see StepObserver).
@@ -52,8 +62,9 @@ private:
     // The examinations' verdict on a candidate; FaceCheck::Verdict is the topological part of it.
     enum class CandidateVerdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral };
 
-    dbrg_status grow_component();
-    dbrg_status drain_queue();
+    dbrg_status grow_component(const ProgressSpan& progress);
+    dbrg_status drain_queue(const ProgressSpan& progress);
+    dbrg_status report_grown(const ProgressSpan& progress) const;
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
     CandidateVerdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
@@ -68,9 +79,9 @@ private:
     void release_queues();
     dbrg_status reject(const Candidate& candidate, CandidateVerdict verdict);
     dbrg_status report_step() const;
-    dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed);
+    dbrg_status try_seed(uint32_t vertex, Array<uint32_t>& removed, const ProgressSpan& progress);
     dbrg_status resolve_pinches(Array<uint32_t>& removed);
-    dbrg_status remove_islands();
+    dbrg_status remove_islands(const ProgressSpan& progress);
 
     const Tetrahedralization& delaunay_;
     Surface& surface_;

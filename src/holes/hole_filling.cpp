@@ -26,10 +26,10 @@ HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, con
 dbrg_status HoleFiller::find_holes(bool& found) {
     context_.stats.holes_found = count_holes();
     found = context_.stats.holes_found > 0;
-    return found ? context_.report(DBRG_STAGE_FILL_HOLES, 0.0) : DBRG_OK;
+    return DBRG_OK;
 }
 
-dbrg_status HoleFiller::fill_with_ears() {
+dbrg_status HoleFiller::fill_with_ears(const ProgressSpan& ears, const ProgressSpan& islands_progress) {
     dbrg_stats& stats = context_.stats;
     // Holes are listed first, as filling adds half-edges, and by the corners of one boundary edge each:
     // enlarging one hole can remove a face of another, and undoing that attempt puts the face back under
@@ -48,6 +48,7 @@ dbrg_status HoleFiller::fill_with_ears() {
     }
     FaceJournal journal(context_.memory);
     for (size_t i = 0; i < starts.size(); i += 2) {
+        DBRG_PROPAGATE(ears.report(i, starts.size()));
         journal.clear();
         const uint32_t u = starts[i], v = starts[i + 1];
         const uint32_t start = surface_.find_halfedge(u, v);
@@ -61,11 +62,14 @@ dbrg_status HoleFiller::fill_with_ears() {
         if (!filled) continue;
         stats.hole_triangles_added += journal.added_count();
         stats.hole_triangles_removed += journal.removed_count();
-        DBRG_PROPAGATE(context_.report(DBRG_STAGE_FILL_HOLES, double(i + 2) / double(starts.size())));
     }
     // Enlarging holes can cut a few faces off the rest; such an island is no object of its own.
     Array<uint32_t> islands(context_.memory);
-    if (!surface_.remove_small_components(MIN_ISLAND_FACES, islands)) return context_.fail_out_of_memory();
+    dbrg_status status = DBRG_OK;
+    const auto between = [&](size_t done, size_t total) { return (status = islands_progress.report(done, total)) == DBRG_OK; };
+    if (!surface_.remove_small_components(MIN_ISLAND_FACES, islands, between)) {
+        return status != DBRG_OK ? status : context_.fail_out_of_memory();
+    }
     stats.hole_triangles_removed += static_cast<uint32_t>(islands.size());
     stats.holes_left_open = count_holes();
     stats.holes_filled = stats.holes_found > stats.holes_left_open ? stats.holes_found - stats.holes_left_open : 0;

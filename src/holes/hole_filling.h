@@ -12,6 +12,7 @@
 #include "core/array.h"
 #include "core/context.h"
 #include "core/pi.h"
+#include "core/progress_span.h"
 #include "core/vec3.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/boundary_causes.h"
@@ -22,23 +23,39 @@ namespace dbrg {
 
 struct SurfaceTopology;
 
+// Where the passes of hole filling start in DBRG_STAGE_FILL_HOLES's progress, each ending where the next
+// starts (about their shares of the time on large inputs): Delaunay triangles over the holes
+// (RegionGrower::regrow_holes) from 0, ears, removing the islands that enlarging cut off, small handles,
+// and the flips growing deferred (RegionGrower::flip_deferred) up to 1.
+constexpr double FILL_PROGRESS_EARS = 0.05;
+constexpr double FILL_PROGRESS_ISLANDS = 0.25;
+constexpr double FILL_PROGRESS_HANDLES = 0.55;
+constexpr double FILL_PROGRESS_FLIPS = 0.97;
+// Removing small handles goes in rounds, the first taking the first half of the pass's progress and each
+// later one half of what is left. Where the parts of a round start in its share, each ending where the
+// next starts: measuring the topology from 0, the spanning tree, the cotree, the short cycles, the cuts.
+constexpr double HANDLES_PROGRESS_TREE = 0.3;
+constexpr double HANDLES_PROGRESS_COTREE = 0.45;
+constexpr double HANDLES_PROGRESS_CYCLES = 0.6;
+constexpr double HANDLES_PROGRESS_CUTS = 0.8;
+
 class HoleFiller {
 public:
     // `causes` says why growing left each boundary half-edge open; it is read at every step, so it may
     // change in between (regrowing adds faces with causes of their own).
     HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes, Context& context);
 
-    // Counts the holes (is_hole) into context.stats.holes_found; `found` tells whether there are any, and
-    // when there are, the stage's progress starts.
+    // Counts the holes (is_hole) into context.stats.holes_found; `found` tells whether there are any.
     dbrg_status find_holes(bool& found);
 
     // Fills every hole of at most params.max_hole_edges edges that can be filled validly with ears,
-    // leaving the open-surface boundaries (§4) alone. Fills the other hole fields of context.stats.
-    dbrg_status fill_with_ears();
+    // leaving the open-surface boundaries (§4) alone, reporting to `ears`, then removes the islands that
+    // enlarging holes cut off, reporting to `islands`. Fills the other hole fields of context.stats.
+    dbrg_status fill_with_ears(const ProgressSpan& ears, const ProgressSpan& islands);
 
     // Topological noise removal: cuts closed components along short non-separating cycles and fills both
-    // sides (small_handles.cpp). Fills the handle fields of context.stats.
-    dbrg_status remove_small_handles();
+    // sides (small_handles.cpp). Reports to `progress`. Fills the handle fields of context.stats.
+    dbrg_status remove_small_handles(const ProgressSpan& progress);
 
 private:
     // How often a hole may be enlarged by removing its boundary triangles before it is left open.
@@ -52,7 +69,8 @@ private:
     // and a closed surface is worth a sharp fold there. Folding back completely is still refused.
     static constexpr double LAST_RESORT_FOLD_ANGLE = 175.0 * PI / 180.0;
 
-    dbrg_status cut_handle(const uint32_t* cycle, size_t length, SurfaceTopology& before, bool& removed);
+    dbrg_status cut_handle(const uint32_t* cycle, size_t length, const ProgressSpan& progress, SurfaceTopology& before,
+                           bool& removed);
     double length_between(uint32_t a, uint32_t b) const;
 
     bool is_open_boundary(uint32_t halfedge) const;

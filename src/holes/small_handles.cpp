@@ -12,6 +12,7 @@
 #include <math.h>
 
 #include "core/intrinsics.h"
+#include "core/progress_span.h"
 #include "core/status.h"
 #include "holes/hole_filling.h"
 
@@ -38,6 +39,9 @@ constexpr uint32_t BALL_RADIUS = MAX_CYCLE_EDGES / 2;
 // many 64-bit words of them are kept. A cycle found non-zero on a subset of the generators is
 // non-separating all the same; handles missed that way are found in the next round.
 constexpr uint32_t MAX_WORDS = 4;
+// The breadth-first passes over the whole surface report every this many vertices or faces: a millisecond
+// or two.
+constexpr size_t REPORT_STEP = 1 << 14;
 
 struct CycleCandidate {
     uint32_t first;   // into the cycle vertex list
@@ -59,14 +63,18 @@ struct SurfaceTopology {
 
 namespace {
 
-bool measure_topology(const Surface& surface, Memory& memory, SurfaceTopology& topology) {
+// Labels the components (the long part, reported to `progress`) and counts each one's genus.
+dbrg_status measure_topology(const Surface& surface, const ProgressSpan& progress, SurfaceTopology& topology) {
+    Context& context = progress.context();
     topology.face_component.clear();  // label_components fills only what it adds
-    const uint32_t components = surface.label_components(topology.face_component);
-    if (components == NO_FACE) return false;
-    Array<int64_t> chi(memory);
-    Array<uint64_t> boundary(memory);
+    dbrg_status status = DBRG_OK;
+    const auto between = [&](size_t done, size_t total) { return (status = progress.report(done, total)) == DBRG_OK; };
+    const uint32_t components = surface.label_components(topology.face_component, between);
+    if (components == NO_FACE) return status != DBRG_OK ? status : context.fail_out_of_memory();
+    Array<int64_t> chi(context.memory);
+    Array<uint64_t> boundary(context.memory);
     if (!chi.resize(components, 0) || !boundary.resize(components, 0) || !topology.genus.resize(components, 0)) {
-        return false;
+        return context.fail_out_of_memory();
     }
     topology.components = components;
     topology.boundary_halfedges = 0;
@@ -92,12 +100,12 @@ bool measure_topology(const Surface& surface, Memory& memory, SurfaceTopology& t
         topology.genus[k] = boundary[k] != 0 ? -1 : int32_t((4 - chi[k]) / 4);
         if (topology.genus[k] > 0) topology.total_genus += uint32_t(topology.genus[k]);
     }
-    return true;
+    return DBRG_OK;
 }
 
 } // namespace
 
-dbrg_status HoleFiller::remove_small_handles() {
+dbrg_status HoleFiller::remove_small_handles(const ProgressSpan& progress) {
     Memory& memory = context_.memory;
     if (added_base_ == 0) {
         added_base_ = surface_.face_count();
@@ -106,8 +114,13 @@ dbrg_status HoleFiller::remove_small_handles() {
     SurfaceTopology topology(memory);
     // Rounds of finding and cutting, each on the surface the last one left, while the genus drops (so at
     // most as many rounds as handles; there is usually one, or two where cut handles were close together).
-    for (;;) {
-        if (!measure_topology(surface_, memory, topology)) return context_.fail_out_of_memory();
+    for (double round_begin = 0, round_end = 0.5;; round_begin = round_end, round_end = (1 + round_end) / 2) {
+        const ProgressSpan round = progress.part(round_begin, round_end);
+        const ProgressSpan tree_progress = round.part(HANDLES_PROGRESS_TREE, HANDLES_PROGRESS_COTREE);
+        const ProgressSpan cotree_progress = round.part(HANDLES_PROGRESS_COTREE, HANDLES_PROGRESS_CYCLES);
+        const ProgressSpan seeds_progress = round.part(HANDLES_PROGRESS_CYCLES, HANDLES_PROGRESS_CUTS);
+        const ProgressSpan cuts_progress = round.part(HANDLES_PROGRESS_CUTS, 1);
+        DBRG_PROPAGATE(measure_topology(surface_, round.part(0, HANDLES_PROGRESS_TREE), topology));
         if (topology.total_genus == 0) break;
         const uint32_t vertices = surface_.vertex_count();
         const uint32_t faces = surface_.face_count();
@@ -127,12 +140,14 @@ dbrg_status HoleFiller::remove_small_handles() {
             !queue.reserve(vertices)) {
             return context_.fail_out_of_memory();
         }
+        size_t tree_vertices = 0;
         for (uint32_t root = 0; root < vertices; ++root) {
             if (tree_parent[root] != NO_VERTEX || !target_vertex(root)) continue;
             tree_parent[root] = root;
             queue.clear();
             queue.push_back(root);
             for (size_t q = 0; q < queue.size(); ++q) {
+                DBRG_PROPAGATE(tree_progress.report_at(tree_vertices++, vertices, REPORT_STEP));
                 const uint32_t u = queue[q];
                 surface_.walk_fan(surface_.vertex_halfedge(u), [&](uint32_t h) {
                     const uint32_t x = surface_.target(h);
@@ -158,6 +173,7 @@ dbrg_status HoleFiller::remove_small_handles() {
             face_seen[root] = 1;
             face_order.push_back(root);
             for (size_t q = face_order.size() - 1; q < face_order.size(); ++q) {
+                DBRG_PROPAGATE(cotree_progress.report_at(q, faces, REPORT_STEP));
                 const uint32_t f = face_order[q];
                 for (uint32_t h = 3 * f; h < 3 * f + 3; ++h) {
                     const uint32_t t = surface_.twin(h);
@@ -238,6 +254,7 @@ dbrg_status HoleFiller::remove_small_handles() {
         uint32_t seeds = 0;
         for (uint32_t seed = 0; seed < vertices; ++seed) {
             if (!is_seed[seed]) continue;
+            DBRG_PROPAGATE(seeds_progress.report(seed, vertices));
             ++seeds;
             ball.clear();
             ball.push_back(seed);
@@ -353,7 +370,8 @@ dbrg_status HoleFiller::remove_small_handles() {
         Array<uint64_t> reduced(memory);
         if (!reduced.resize(words)) return context_.fail_out_of_memory();
         uint32_t removed_this_round = 0;
-        for (uint32_t i : order) {
+        for (size_t k = 0; k < order.size(); ++k) {
+            const uint32_t i = order[k];
             for (uint32_t w = 0; w < words; ++w) reduced[w] = candidate_class[size_t(i) * words + w];
             auto leading = [&](const uint64_t* c) -> int {
                 for (uint32_t w = words; w-- > 0;) {
@@ -369,7 +387,9 @@ dbrg_status HoleFiller::remove_small_handles() {
             }
             if (leading(reduced.data()) < 0) continue;
             bool removed = false;
-            DBRG_PROPAGATE(cut_handle(&cycles[candidates[i].first], candidates[i].length, topology, removed));
+            // Each cut measures the whole surface again: its share of the cuts' progress.
+            const ProgressSpan cut_progress = cuts_progress.part(double(k) / order.size(), double(k + 1) / order.size());
+            DBRG_PROPAGATE(cut_handle(&cycles[candidates[i].first], candidates[i].length, cut_progress, topology, removed));
             if (!removed) continue;
             ++removed_this_round;
             // Insert keeping the basis sorted by decreasing leading bit, so reduction above is one pass.
@@ -398,7 +418,8 @@ double HoleFiller::length_between(uint32_t a, uint32_t b) const {
 // Removes the faces around the cycle's vertices, which leaves two loops where the cycle went around a
 // handle, and fills them. Kept only when the genus dropped and the surface is as closed and as connected
 // as before; otherwise everything is put back.
-dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, SurfaceTopology& before, bool& removed) {
+dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, const ProgressSpan& progress,
+                                   SurfaceTopology& before, bool& removed) {
     removed = false;
     for (size_t i = 0; i < length; ++i) {
         const uint32_t a = cycle[i], b = cycle[(i + 1) % length];
@@ -440,7 +461,7 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, Surface
     DBRG_PROPAGATE(status);
 
     SurfaceTopology after(memory);
-    if (!measure_topology(surface_, memory, after)) return context_.fail_out_of_memory();
+    DBRG_PROPAGATE(measure_topology(surface_, progress, after));
     if (all_filled && after.components == before.components && after.boundary_halfedges == before.boundary_halfedges &&
         after.total_genus < before.total_genus) {
         removed = true;

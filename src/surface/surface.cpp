@@ -187,48 +187,6 @@ bool Surface::remove_pinches(Array<uint32_t>& removed) {
     return true;
 }
 
-uint32_t Surface::label_components(Array<uint32_t>& face_component) const {
-    Array<uint32_t> stack(corners_.memory());
-    if (!face_component.resize(face_count(), NO_FACE)) return NO_FACE;
-    uint32_t components = 0;
-    for (uint32_t seed = 0; seed < face_count(); ++seed) {
-        if (face_removed(seed) || face_component[seed] != NO_FACE) continue;
-        face_component[seed] = components;
-        if (!stack.push_back(seed)) return NO_FACE;
-        while (!stack.empty()) {
-            const uint32_t f = stack.back();
-            stack.pop_back();
-            for (uint32_t h = 3 * f; h < 3 * f + 3; ++h) {
-                if (is_boundary(h)) continue;
-                const uint32_t neighbour = face_of(twins_[h]);
-                if (face_component[neighbour] != NO_FACE) continue;
-                face_component[neighbour] = components;
-                if (!stack.push_back(neighbour)) return NO_FACE;
-            }
-        }
-        ++components;
-    }
-    return components;
-}
-
-bool Surface::remove_small_components(uint32_t min_faces, Array<uint32_t>& removed) {
-    Array<uint32_t> face_component(corners_.memory());
-    Array<uint32_t> sizes(corners_.memory());
-    const uint32_t components = label_components(face_component);
-    if (components == NO_FACE || !sizes.resize(components, 0)) return false;
-    for (uint32_t f = 0; f < face_count(); ++f) {
-        if (face_component[f] != NO_FACE) ++sizes[face_component[f]];
-    }
-    uint32_t largest = 0;
-    for (uint32_t k = 1; k < components; ++k) largest = sizes[k] > sizes[largest] ? k : largest;
-    for (uint32_t f = 0; f < face_count(); ++f) {
-        const uint32_t k = face_component[f];
-        if (k == NO_FACE || k == largest || sizes[k] >= min_faces) continue;
-        if (!removed.push_back(f) || !remove_face(f)) return false;
-    }
-    return true;
-}
-
 bool Surface::add_fan(uint32_t v, uint32_t h) {
     if (vertex_halfedge_[v] == NO_HALFEDGE) {
         vertex_halfedge_[v] = h;

@@ -5,6 +5,7 @@
 // reconstruction from unorganized points", Computer-Aided Design 37 (2005), sections 2.2 and 3.2.1.
 #pragma once
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include <type_traits>
@@ -136,12 +137,25 @@ public:
     bool remove_pinches(Array<uint32_t>& removed);
 
     // Numbers the connected components (faces joined through edges) 0, 1, ...: face_component[f] for each
-    // live face, NO_FACE for removed ones. Returns the number of components, or NO_FACE on allocation failure.
-    uint32_t label_components(Array<uint32_t>& face_component) const;
+    // live face, NO_FACE for removed ones. Returns the number of components, or NO_FACE on allocation failure
+    // or when `between` stopped it. Before each step of LABEL_STEP_FACES faces labelled, calls
+    // between(labelled, face_count()), which returns false to stop (for progress reports and cancelling).
+    template <class Between>
+    uint32_t label_components(Array<uint32_t>& face_component, const Between& between) const;
+    uint32_t label_components(Array<uint32_t>& face_component) const {
+        return label_components(face_component, [](size_t, size_t) { return true; });
+    }
+    // A few milliseconds of labelling.
+    static constexpr uint32_t LABEL_STEP_FACES = 1u << 16;
 
     // Removes every component with fewer than `min_faces` faces, except the largest one. Appends the ids of
-    // the removed faces to `removed`. Returns false on allocation failure.
-    bool remove_small_components(uint32_t min_faces, Array<uint32_t>& removed);
+    // the removed faces to `removed`. Returns false on allocation failure or when `between` stopped the
+    // labelling (see label_components).
+    template <class Between>
+    bool remove_small_components(uint32_t min_faces, Array<uint32_t>& removed, const Between& between);
+    bool remove_small_components(uint32_t min_faces, Array<uint32_t>& removed) {
+        return remove_small_components(min_faces, removed, [](size_t, size_t) { return true; });
+    }
 
     // Checks every invariant above from scratch. On failure writes a sentence into message.
     bool validate(char* message, size_t message_capacity) const;
@@ -213,6 +227,52 @@ bool Surface::walk_vertex(uint32_t v, Visit&& visit) const {
     bool walking = true;
     for_each_fan(v, [&](uint32_t start) { walking = walking && walk_fan(start, visit); });
     return walking;
+}
+
+template <class Between>
+uint32_t Surface::label_components(Array<uint32_t>& face_component, const Between& between) const {
+    Array<uint32_t> stack(corners_.memory());
+    if (!face_component.resize(face_count(), NO_FACE)) return NO_FACE;
+    uint32_t components = 0, labelled = 0;
+    for (uint32_t seed = 0; seed < face_count(); ++seed) {
+        if (face_removed(seed) || face_component[seed] != NO_FACE) continue;
+        face_component[seed] = components;
+        if (!stack.push_back(seed)) return NO_FACE;
+        while (!stack.empty()) {
+            if (labelled % LABEL_STEP_FACES == 0 && !between(labelled, face_count())) return NO_FACE;
+            ++labelled;
+            const uint32_t f = stack.back();
+            stack.pop_back();
+            for (uint32_t h = 3 * f; h < 3 * f + 3; ++h) {
+                if (is_boundary(h)) continue;
+                const uint32_t neighbour = face_of(twins_[h]);
+                if (face_component[neighbour] != NO_FACE) continue;
+                face_component[neighbour] = components;
+                if (!stack.push_back(neighbour)) return NO_FACE;
+            }
+        }
+        ++components;
+    }
+    return components;
+}
+
+template <class Between>
+bool Surface::remove_small_components(uint32_t min_faces, Array<uint32_t>& removed, const Between& between) {
+    Array<uint32_t> face_component(corners_.memory());
+    Array<uint32_t> sizes(corners_.memory());
+    const uint32_t components = label_components(face_component, between);
+    if (components == NO_FACE || !sizes.resize(components, 0)) return false;
+    for (uint32_t f = 0; f < face_count(); ++f) {
+        if (face_component[f] != NO_FACE) ++sizes[face_component[f]];
+    }
+    uint32_t largest = 0;
+    for (uint32_t k = 1; k < components; ++k) largest = sizes[k] > sizes[largest] ? k : largest;
+    for (uint32_t f = 0; f < face_count(); ++f) {
+        const uint32_t k = face_component[f];
+        if (k == NO_FACE || k == largest || sizes[k] >= min_faces) continue;
+        if (!removed.push_back(f) || !remove_face(f)) return false;
+    }
+    return true;
 }
 
 template <class Visit>

@@ -3,7 +3,7 @@
 //
 // The callback records the wall-clock time of every report; the call's start and return count as reports
 // too, so the wait before the first report and after the last one are measured as well.
-// Usage: dbrg-progress-gaps [--points N] [--shape NAME] [--threads N] [--tetrahedralize]
+// Usage: dbrg-progress-gaps [--points N] [--shape NAME] [--threads N] [--tetrahedralize] [--over SECONDS]
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
     const char* shape_name = "bumpy_sphere";
     uint32_t threads = 0;
     bool tetrahedralize = false;
+    double over = -1;  // list every gap longer than this; below 0, none
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--points") && i + 1 < argc) {
             points = strtoull(argv[++i], nullptr, 10);
@@ -60,8 +61,11 @@ int main(int argc, char** argv) {
             threads = static_cast<uint32_t>(strtoul(argv[++i], nullptr, 10));
         } else if (!strcmp(argv[i], "--tetrahedralize")) {
             tetrahedralize = true;
+        } else if (!strcmp(argv[i], "--over") && i + 1 < argc) {
+            over = strtod(argv[++i], nullptr);
         } else {
-            fprintf(stderr, "usage: %s [--points N] [--shape NAME] [--threads N] [--tetrahedralize]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--points N] [--shape NAME] [--threads N] [--tetrahedralize] [--over SECONDS]\n",
+                    argv[0]);
             return 2;
         }
     }
@@ -124,6 +128,12 @@ int main(int argc, char** argv) {
         printf("%-10s %5zu reports\n", stage_name(s), count[s]);
         if (entering[s]) describe("  entering", reports[entering[s] - 1], reports[entering[s]]);
         if (within[s]) describe("  within  ", reports[within[s] - 1], reports[within[s]]);
+    }
+    if (over >= 0) {
+        printf("gaps over %.3f s:\n", over);
+        for (size_t i = 1; i < reports.size(); ++i) {
+            if (seconds_between(reports[i - 1], reports[i]) > over) describe("  ", reports[i - 1], reports[i]);
+        }
     }
     describe("after the last report", reports[reports.size() - 2], reports.back());
     describe("largest gap:", reports[largest - 1], reports[largest]);
