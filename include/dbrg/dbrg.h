@@ -112,7 +112,8 @@ typedef enum dbrg_stage {
     DBRG_STAGE_VALIDATE = 0,     /* checking and conditioning the input points */
     DBRG_STAGE_SORT = 1,         /* spatial sort of the points */
     DBRG_STAGE_DELAUNAY = 2,     /* Delaunay tetrahedralization */
-    DBRG_STAGE_GROW = 3,         /* region growing; the fraction is the share of points reached */
+    DBRG_STAGE_GROW = 3,         /* region growing; the fraction follows the faces grown, then the
+                                    removal of small islands and the edge flips */
     DBRG_STAGE_FILL_HOLES = 4,   /* recursive hole filling */
     DBRG_STAGE_OUTPUT = 5        /* building the result */
 } dbrg_stage;

@@ -392,7 +392,8 @@ pub enum Stage {
     Sort,
     /// Delaunay tetrahedralization.
     Delaunay,
-    /// Region growing; the fraction is the share of points reached.
+    /// Region growing; the fraction follows the faces grown, then the removal of small islands and the
+    /// edge flips.
     Grow,
     /// Recursive hole filling.
     FillHoles,
