@@ -289,14 +289,13 @@ TEST_CASE("ears start at concave corners: the tip of a cone waits though its ear
         faces.push_back({x, outer(y), y});
     }
     HandMade made(xyz, faces, 8);
-    // The outer rim is the surface's border.
+    // The outer rim is the surface's border; its 9 edges are more than max_hole_edges, so it stays open.
     const uint32_t rim = made.halfedge(outer(c), outer(q(0)));
     REQUIRE(rim != NO_HALFEDGE);
     made.surface.walk_loop(rim, [&](uint32_t h) { made.mark_open(h); });
     REQUIRE(made.surface.is_boundary(made.halfedge(p, q(0))));
 
     made.fill_holes();
-    CHECK(made.context.stats.holes_found == 1);
     CHECK(made.context.stats.holes_filled == 1);
     CHECK(made.boundary_halfedges() == around.size());  // the border
     CHECK_FALSE(made.has_face(p, q(ring - 1), q(0)));
@@ -464,19 +463,23 @@ TEST_CASE("cutting a small handle reports inside the cuts' share, and a cancel t
 
 namespace {
 
-// A torus of 12 x 8 vertices with the six faces around one vertex removed: a hole of six edges.
+// A torus of 48 x 24 vertices with the faces around a block of `side` x `side` vertices removed: a hole
+// of 4 side + 2 edges (the quads' diagonals cut two corners), about side + 1 vertex spacings across.
 struct HoledTorus : HandMade {
-    explicit HoledTorus(uint32_t max_hole_edges)
-        : HandMade(torus_points(12, 8, 1.0, 0.4), torus_faces(12, 8), max_hole_edges) {
-        const uint32_t centre = vertex[torus_vertex(12, 8, 5, 2)];
-        std::vector<uint32_t> fan;
-        surface.walk_vertex(centre, [&](uint32_t h) { fan.push_back(Surface::face_of(h)); });
-        REQUIRE(fan.size() == 6);
-        for (uint32_t f : fan) REQUIRE(surface.remove_face(f));
+    HoledTorus(uint32_t side, double boundary_factor)
+        : HandMade(torus_points(48, 24, 1.0, 0.4), torus_faces(48, 24), 256) {
+        context.params.boundary_factor = boundary_factor;
+        for (uint32_t i = 0; i < side; ++i) {
+            for (uint32_t j = 0; j < side; ++j) {
+                std::vector<uint32_t> fan;
+                surface.walk_vertex(vertex[torus_vertex(48, 24, 10 + i, 8 + j)], [&](uint32_t h) { fan.push_back(Surface::face_of(h)); });
+                for (uint32_t f : fan) REQUIRE(surface.remove_face(f));
+            }
+        }
         for (uint32_t h = 0; h < 3 * surface.face_count(); ++h) {
             if (surface.is_boundary(h)) loop.push_back(h);
         }
-        REQUIRE(loop.size() == 6);
+        REQUIRE(loop.size() == 4 * side + 2);
     }
     std::vector<uint32_t> loop;  // the hole's boundary half-edges
 };
@@ -484,20 +487,39 @@ struct HoledTorus : HandMade {
 } // namespace
 
 TEST_CASE("a boundary loop is a hole unless most of its edges saw growing refuse a candidate as too large") {
-    // max_hole_edges 8 makes loops of at most 2 edges holes whatever their edges say (open_loop_limit).
-    for (uint32_t open_edges = 0; open_edges <= 6; ++open_edges) {
+    // 22 edges round an opening wide next to the faces' circumradius at the default boundary_factor 3, so
+    // the edges' vote decides.
+    for (uint32_t open_edges = 0; open_edges <= 22; open_edges += 2) {
         CAPTURE(open_edges);
-        HoledTorus torus(8);
+        HoledTorus torus(5, 3);
         for (uint32_t i = 0; i < open_edges; ++i) torus.mark_open(torus.loop[i]);
         torus.fill_holes();
-        const bool hole = 2 * open_edges <= 6;  // a minority, or half, of the edges call it a border
+        const bool hole = 2 * open_edges <= 22;  // a minority, or half, of the edges call it a border
         CHECK(torus.context.stats.holes_found == (hole ? 1 : 0));
-        CHECK(torus.boundary_halfedges() == (hole ? 0 : 6));
+        CHECK(torus.boundary_halfedges() == (hole ? 0 : 22));
     }
-    // A loop this short is a hole all the same: a real border is long.
-    HoledTorus torus(24);
-    for (uint32_t h : torus.loop) torus.mark_open(h);
-    torus.fill_holes();
-    CHECK(torus.context.stats.holes_filled == 1);
-    CHECK(torus.genus() == 1);
+}
+
+TEST_CASE("a loop every edge of which saw a candidate refused as too large is a hole when it is short or narrow") {
+    SUBCASE("short: 14 edges") {
+        HoledTorus torus(3, 3);
+        for (uint32_t h : torus.loop) torus.mark_open(h);
+        torus.fill_holes();
+        CHECK(torus.context.stats.holes_filled == 1);
+        CHECK(torus.genus() == 1);
+    }
+    SUBCASE("narrow next to the faces around it, with a larger boundary factor") {
+        HoledTorus torus(5, 6);
+        for (uint32_t h : torus.loop) torus.mark_open(h);
+        torus.fill_holes();
+        CHECK(torus.context.stats.holes_filled == 1);
+        CHECK(torus.genus() == 1);
+    }
+    SUBCASE("wide: the same opening at the default factor is a border") {
+        HoledTorus torus(5, 3);
+        for (uint32_t h : torus.loop) torus.mark_open(h);
+        torus.fill_holes();
+        CHECK(torus.context.stats.holes_found == 0);
+        CHECK(torus.boundary_halfedges() == 22);
+    }
 }

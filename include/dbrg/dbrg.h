@@ -177,9 +177,10 @@ typedef struct dbrg_params {
     /* Non-zero: fill holes left by rejected candidates (paper section 5), then cut the small handles
      * growing made where a closed surface comes closer to itself than the sample spacing. Default 1. */
     uint32_t fill_holes;
-    /* Holes with more boundary edges than this stay open. At least 3; default 64. A loop most of whose
-     * edges the open-surface test made is a border, not a hole, unless it is at most a quarter of this
-     * length: a real border is long. */
+    /* Holes with more boundary edges than this stay open. At least 3; default 256. A loop most of whose
+     * edges the open-surface test made is a border, not a hole, unless it is at most 16 edges long or the
+     * opening it bounds is no wider than boundary_factor times the mean circumradius of the triangles
+     * along it (a sparse part of a closed surface, not a border). */
     uint32_t max_hole_edges;
     /* How many surface components may be grown from separate seeds (a scan of several objects).
      * At least 1. */

@@ -16,7 +16,7 @@ void fill_default_params(dbrg_params& params) {
     params.boundary_factor = 3.0;
     params.boundary_mean = DBRG_BOUNDARY_MEAN_GLOBAL;  // paper §4; measured better on the bunny (README)
     params.fill_holes = 1;
-    params.max_hole_edges = 64;
+    params.max_hole_edges = 256;
     params.max_components = 64;
     params.backend = DBRG_BACKEND_BUILTIN;
     params.threads = 0;

@@ -56,7 +56,7 @@ dbrg_status HoleFiller::fill_with_ears(const ProgressSpan& ears, const ProgressS
         if (!collect_hole(start, loop)) continue;
         // A long loop that some edges call a border (is_hole) is filled over its own vertices only: removing
         // grown faces to fill it would trade surface the data support for a closure they only half support.
-        const bool border_like = count_open_edges(loop) > 0 && loop.size() > open_loop_limit();
+        const bool border_like = count_open_edges(loop) > 0 && loop.size() > SHORT_LOOP_EDGES;
         bool filled = false;
         DBRG_PROPAGATE(fill_within_fold_limits(u, v, border_like ? 0 : MAX_ENLARGEMENTS, journal, filled));
         if (!filled) continue;
@@ -93,7 +93,31 @@ bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
     const bool collected = surface_.walk_loop(start, [&](uint32_t h) {
         return loop.size() < context_.params.max_hole_edges && loop.push_back(h);
     });
-    return collected && (filling_cut_ || is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop)));
+    return collected && (filling_cut_ || is_hole(loop));
+}
+
+bool HoleFiller::is_hole(const Array<uint32_t>& loop) const {
+    const size_t edges = loop.size();
+    return 2 * size_t(count_open_edges(loop)) <= edges || edges <= SHORT_LOOP_EDGES || is_narrow(loop);
+}
+
+bool HoleFiller::is_narrow(const Array<uint32_t>& loop) const {
+    const double factor = context_.params.boundary_factor;
+    if (factor == 0) return true;  // no test, no border
+    Vec3 centre{0, 0, 0};
+    for (uint32_t h : loop) centre = centre + load_vec3(delaunay_.point(surface_.origin(h)));
+    centre = (1.0 / double(loop.size())) * centre;
+    Vec3 twice_area{0, 0, 0};
+    double perimeter = 0, radius_sum = 0;
+    for (uint32_t h : loop) {
+        const Vec3 a = load_vec3(delaunay_.point(surface_.origin(h))) - centre;
+        const Vec3 b = load_vec3(delaunay_.point(surface_.target(h))) - centre;
+        twice_area = twice_area + cross(a, b);
+        perimeter += length(b - a);
+        radius_sum += face_radius(delaunay_, surface_, Surface::face_of(h));
+    }
+    // width <= factor * mean radius, both sides multiplied by the perimeter and the loop's length
+    return length(twice_area) * double(loop.size()) <= factor * radius_sum * perimeter;
 }
 
 // Boundary loops that are holes (is_hole), of any length.
@@ -111,7 +135,7 @@ uint32_t HoleFiller::count_holes() const {
             return loop.push_back(g);
         });
         if (!collected) return 0;
-        holes += is_hole(static_cast<uint32_t>(loop.size()), count_open_edges(loop)) ? 1 : 0;
+        holes += is_hole(loop) ? 1 : 0;
     }
     return holes;
 }

@@ -78,17 +78,21 @@ private:
     uint32_t count_open_edges(const Array<uint32_t>& loop) const;
     // A loop that the open-surface test made but that is this short is a hole all the same: a real border
     // is long, while a short loop marks a jump in sampling density (as in CAD tessellations).
-    uint32_t open_loop_limit() const { return context_.params.max_hole_edges / 4; }
-    // Whether a boundary loop of `length` edges, `open_edges` of them left by the open-surface test (§4),
-    // is a hole (§5) rather than a real border. Each edge says why growing stopped there: its candidate
-    // was refused as too large (§4), or every candidate was invalid (§3.2.1); a loop is one thing or the
-    // other, so its edges vote. At a real border nearly every edge sees only large triangles beyond it.
-    // Where a closed surface comes closer to itself than the sample spacing (a deep crease, a neck), a
-    // hole's edges see triangles across the gap, and some are large enough for §4: a minority, which
-    // does not make the loop a border.
-    bool is_hole(uint32_t length, uint32_t open_edges) const {
-        return 2 * open_edges <= length || length <= open_loop_limit();
-    }
+    static constexpr uint32_t SHORT_LOOP_EDGES = 16;
+    // Whether the boundary loop `loop` (its half-edges in order) is a hole (§5) rather than a real border.
+    // Each edge says why growing stopped there: its candidate was refused as too large (§4), or every
+    // candidate was invalid (§3.2.1). A loop is one thing or the other, so its edges vote: at a real border
+    // nearly every edge sees only large triangles beyond it, while where a closed surface comes closer to
+    // itself than the sample spacing (a deep crease, a neck) a minority of a hole's edges see triangles
+    // across the gap large enough for §4. A loop that §4 made is still a hole when it is short, or when
+    // the opening it bounds is narrow next to the triangles around it (is_narrow): §4 compares each
+    // candidate with the mean over the whole surface, which on an unevenly sampled closed object refuses
+    // the ordinary triangles of its sparse parts.
+    bool is_hole(const Array<uint32_t>& loop) const;
+    // §4's test for the loop as a whole, against the triangles at hand: whether the opening's width (twice
+    // its area over its perimeter: the radius of a round one, half the width of a long crack) is at most
+    // boundary_factor times the mean circumradius of the faces along the loop.
+    bool is_narrow(const Array<uint32_t>& loop) const;
     // The boundary half-edges of the loop through `start`, in order; false when it is longer than
     // max_hole_edges, or when it is a border (is_hole).
     bool collect_hole(uint32_t start, Array<uint32_t>& loop) const;
