@@ -39,7 +39,7 @@ const char* const RECONSTRUCT_USAGE =
     "  --sliver-angle DEG       largest dihedral angle between neighbouring triangles, in degrees,\n"
     "                           strictly between 90 and 180 (default 150)\n"
     "  --no-fill-holes          leave the holes that growing could not close\n"
-    "  --max-hole-edges N       holes with more boundary edges stay open (default 64)\n"
+    "  --max-hole-edges N       holes with more boundary edges stay open (default 256)\n"
     "  --max-components N       surfaces grown from separate seeds, at most (default 64)\n"
     "  --backend builtin|tetgen the Delaunay tetrahedralization to use (default builtin)\n"
     "  --threads N              threads for the stages that split (0: all, default; 1: none);\n"

@@ -359,7 +359,7 @@ RegionGrower::CandidateVerdict RegionGrower::examine(const Candidate& c, double&
 bool RegionGrower::passes_boundary_test(const Candidate& c) const {
     const double factor = context_.params.boundary_factor;
     if (factor == 0) return true;
-    const double mean = context_.params.boundary_mean == DBRG_BOUNDARY_MEAN_GLOBAL
+    const double mean = context_.params.boundary_mean == DBRG_BOUNDARY_MEAN_GLOBAL && !local_boundary_test_
                             ? radius_sum_ / surface_.live_face_count()
                             : local_mean_radius(c.halfedge);
     return c.radius <= factor * mean;
@@ -419,6 +419,7 @@ dbrg_status RegionGrower::report_step() const {
 }
 
 dbrg_status RegionGrower::regrow_holes(const ProgressSpan& progress) {
+    local_boundary_test_ = true;
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
     const ProgressSpan proposing = progress.part(0, REGROW_PROGRESS_GROWING);
@@ -432,6 +433,7 @@ dbrg_status RegionGrower::regrow_holes(const ProgressSpan& progress) {
     DBRG_PROPAGATE(resolve_pinches(removed));
     const uint32_t after = surface_.live_face_count();
     context_.stats.hole_triangles_delaunay += after > before ? after - before : 0;
+    local_boundary_test_ = false;
     return DBRG_OK;
 }
 

@@ -39,7 +39,10 @@ public:
 
     // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
     // changed around it since it was last examined. The first step of hole filling (§5): Delaunay
-    // triangles before ears. Adds context.stats.hole_triangles_delaunay. Reports to `progress`.
+    // triangles before ears. Here the open-surface test (§4) weighs each candidate against the faces
+    // around its edge's ends rather than the whole surface: inside a hole, the triangles at hand set the
+    // scale, while the mean over the surface refuses the ordinary triangles of an unevenly sampled closed
+    // object's sparse parts. Adds context.stats.hole_triangles_delaunay. Reports to `progress`.
     dbrg_status regrow_holes(const ProgressSpan& progress);
 
     // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
@@ -95,6 +98,7 @@ private:
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
+    bool local_boundary_test_ = false;  // regrow_holes: §4 against the faces around the edge
     EdgeFlipper flipper_;
 };
 

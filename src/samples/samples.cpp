@@ -1,5 +1,6 @@
 // Sample point sets on known surfaces: random points spread by area, thinned to a Poisson-disk set so the
-// spacing is even, with the spacing tuned until the count is close to what was asked.
+// spacing is even, or clustered on a graded grid as a decimated mesh's vertices are, with the spacing tuned
+// until the count is close to what was asked.
 #include "samples/samples.h"
 
 #include <algorithm>
@@ -177,6 +178,48 @@ std::vector<Point> thin(Shape shape, const std::vector<Point>& raw, double base_
     return kept;
 }
 
+// `count` random points on the shape, roughly uniform by area.
+std::vector<Point> raw_points(Shape shape, size_t count, Random& random) {
+    std::vector<Point> raw;
+    raw.reserve(count);
+    while (raw.size() < count) {
+        Point p;
+        if (raw_point(shape, random, p)) raw.push_back(p);
+    }
+    return raw;
+}
+
+// Keeps, in order, the first point in each cell of a grid whose cells are `base` long in z at the bottom
+// and grow geometrically up to sqrt(density_ratio) times that at the top (so the density of kept points
+// falls density_ratio times), `stretch` times as long in x as in y.
+std::vector<Point> cluster(const std::vector<Point>& raw, double base, double density_ratio, double stretch) {
+    double bottom = HUGE_VAL, top = -HUGE_VAL;
+    for (const Point& p : raw) {
+        bottom = std::min(bottom, p.z);
+        top = std::max(top, p.z);
+    }
+    const double height = top - bottom, half_log = 0.5 * std::log(density_ratio);
+    std::unordered_map<uint64_t, bool> taken;
+    std::vector<Point> kept;
+    for (const Point& p : raw) {
+        const double t = (p.z - bottom) / height, growth = std::exp(half_log * t);
+        // z measured in cells: the integral of 1 / (base * growth) from the bottom.
+        const double z_cells = half_log > 0 ? height * (1 - 1 / growth) / (half_log * base) : (p.z - bottom) / base;
+        const int64_t i = int64_t(std::floor(p.x / (base * growth * stretch))), j = int64_t(std::floor(p.y / (base * growth))),
+                      k = int64_t(std::floor(z_cells));
+        const uint64_t key = (uint64_t(i) & 0x1fffff) << 42 | (uint64_t(j) & 0x1fffff) << 21 | (uint64_t(k) & 0x1fffff);
+        if (taken.emplace(key, true).second) kept.push_back(p);
+    }
+    return kept;
+}
+
+std::vector<double> coordinates(const std::vector<Point>& points) {
+    std::vector<double> xyz;
+    xyz.reserve(3 * points.size());
+    for (const Point& p : points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
+    return xyz;
+}
+
 } // namespace
 
 ShapeFacts facts(Shape shape) {
@@ -208,15 +251,24 @@ bool shape_from_name(std::string_view name, Shape& shape) {
     return false;
 }
 
+std::vector<double> sample_clustered(Shape shape, size_t count, double density_ratio, double stretch, uint64_t seed) {
+    Random random(seed);
+    const std::vector<Point> raw = raw_points(shape, 30 * count, random);
+    // The number of cells hit falls as the square of the cell size: a few corrections home in on `count`.
+    double base = 2.0 / std::sqrt(double(count));
+    std::vector<Point> kept = cluster(raw, base, density_ratio, stretch);
+    for (int round = 0; round < 8 && !kept.empty(); ++round) {
+        const double ratio = double(kept.size()) / double(count);
+        if (std::fabs(ratio - 1) < 0.03) break;
+        base *= std::sqrt(ratio);
+        kept = cluster(raw, base, density_ratio, stretch);
+    }
+    return coordinates(kept);
+}
+
 std::vector<double> sample(Shape shape, size_t count, uint64_t seed) {
     Random random(seed);
-    std::vector<Point> raw;
-    const size_t oversampling = 6;
-    raw.reserve(oversampling * count);
-    while (raw.size() < oversampling * count) {
-        Point p;
-        if (raw_point(shape, random, p)) raw.push_back(p);
-    }
+    const std::vector<Point> raw = raw_points(shape, 6 * count, random);
     // The number of points kept falls as the square of the spacing: a few corrections home in on `count`.
     double spacing = 2.0 / std::sqrt(double(count));
     std::vector<Point> kept = thin(shape, raw, spacing);
@@ -226,10 +278,7 @@ std::vector<double> sample(Shape shape, size_t count, uint64_t seed) {
         spacing *= std::sqrt(ratio);
         kept = thin(shape, raw, spacing);
     }
-    std::vector<double> xyz;
-    xyz.reserve(3 * kept.size());
-    for (const Point& p : kept) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-    return xyz;
+    return coordinates(kept);
 }
 
 } // namespace dbrg::samples

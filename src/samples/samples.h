@@ -39,4 +39,11 @@ bool shape_from_name(std::string_view name, Shape& shape);
 // x, y, z triples. Deterministic for a given seed.
 std::vector<double> sample(Shape shape, size_t count, uint64_t seed = 1);
 
+// About `count` points (within a few percent) on `shape` spread as the vertices of a mesh decimated
+// unevenly: one random point per cell of a grid whose cells grow along z, so that the density falls
+// `density_ratio` times from the bottom to the top, and are `stretch` times as long in x as in y.
+// Unlike sample's, two points may be much closer than the spacing (across a cell wall). Deterministic
+// for a given seed.
+std::vector<double> sample_clustered(Shape shape, size_t count, double density_ratio, double stretch, uint64_t seed = 1);
+
 } // namespace dbrg::samples

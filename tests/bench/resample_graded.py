@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
-"""Points on a triangle mesh whose density changes steadily across it, for the open-or-closed tests and
-benchmarks (a closed object sampled unevenly must still come out closed). Python 3 with numpy only; the
-same arguments give the same points.
+"""Points on a triangle mesh spread as the vertices of an unevenly decimated mesh are, for the open-or-closed
+benchmarks (a closed object sampled unevenly must still come out closed). Python 3 with numpy only; the same
+arguments give the same points.
 
-    python3 tests/bench/resample_graded.py MESH|torus -o POINTS.xyz [--points N] [--ratio R] [--seed N]
-                                           [--mesh-out MESH.off]
+    python3 tests/bench/resample_graded.py MESH|torus -o POINTS.xyz [--points N] [--ratio R] [--stretch S]
+                                           [--seed N] [--mesh-out MESH.off]
 
-The points are spread evenly (no two closer than the local spacing) with a spacing that grows
-geometrically along the mesh's longest bounding-box axis, so that the density (points per area) is R times
-higher at one end than at the other (R = 30 by default). About N points (default: the mesh's vertex
-count). `torus` resamples a generated torus; --mesh-out writes the mesh sampled, the reference.
+Random points drawn uniformly over the mesh's area are clustered on a grid: one point per cell is kept. The
+cells grow geometrically along the mesh's longest bounding-box axis, so that the density of kept points
+falls R times (default 30) from one end to the other, and are S times (default 2) longer along one of the
+other axes, as a decimated mesh's triangles are long on its smooth parts. About N points (default: the
+mesh's vertex count). `torus` resamples a generated torus; --mesh-out writes the mesh sampled, the reference.
+The library's tests draw the same kind of sample on their built-in shapes (samples::sample_clustered).
 """
 import argparse
 import math
@@ -22,7 +24,7 @@ except ImportError:
 
 from scan_simulator import read_triangle_mesh, torus_mesh, write_off, write_points
 
-OVERSAMPLING = 8  # candidates drawn per point kept
+CANDIDATES_PER_POINT = 30
 
 
 def surface_candidates(vertices, triangles, count, rng):
@@ -37,69 +39,53 @@ def surface_candidates(vertices, triangles, count, rng):
     return a + s[:, None] * (b - a) + t[:, None] * (c - a)
 
 
-def relative_spacing(points, ratio):
-    """The spacing at each point relative to the densest end: sqrt(ratio) at the sparse end of the longest
-    axis (density falls as the square of the spacing)."""
+def first_per_cell(points, cell, ratio, stretch):
+    """The indices of the first point in each cell, the cells `cell` long at the dense end of the longest
+    axis and sqrt(ratio) times that at the other end."""
     low, high = points.min(axis=0), points.max(axis=0)
     axis = int(np.argmax(high - low))
-    t = (points[:, axis] - low[axis]) / (high[axis] - low[axis])
-    return ratio ** (0.5 * t)
+    across = [i for i in range(3) if i != axis]
+    extent = high[axis] - low[axis]
+    half_log = 0.5 * math.log(ratio)
+    t = (points[:, axis] - low[axis]) / extent
+    growth = np.exp(half_log * t)
+    along = extent * (1 - 1 / growth) / half_log if half_log > 0 else points[:, axis] - low[axis]
+    keys = np.stack([np.floor(along / cell),
+                     np.floor(points[:, across[0]] / (cell * growth * stretch)),
+                     np.floor(points[:, across[1]] / (cell * growth))], axis=1).astype(np.int64)
+    _, first = np.unique(keys, axis=0, return_index=True)
+    return np.sort(first)
 
 
-def thin(points, spacing):
-    """Keeps, in order, each point at least its own `spacing` away from every point kept before it."""
-    cell = spacing.max()
-    keys = np.floor(points / cell).astype(np.int64)
-    cells = {}
-    kept = []
-    for i in range(len(points)):
-        p, need, (ci, cj, ck) = points[i], spacing[i], keys[i]
-        clear = True
-        for di in (-1, 0, 1):
-            for dj in (-1, 0, 1):
-                for dk in (-1, 0, 1):
-                    for q in cells.get((ci + di, cj + dj, ck + dk), ()):
-                        d = points[q] - p
-                        if d @ d < need * need:
-                            clear = False
-                            break
-                    if not clear:
-                        break
-                if not clear:
-                    break
-        if clear:
-            cells.setdefault((ci, cj, ck), []).append(i)
-            kept.append(i)
-    return points[kept]
-
-
-def resample(vertices, triangles, count, ratio, seed):
+def resample(vertices, triangles, count, ratio, stretch, seed):
     rng = np.random.default_rng(seed)
-    candidates = surface_candidates(vertices, triangles, OVERSAMPLING * count, rng)
-    relative = relative_spacing(candidates, ratio)
-    corners = vertices[triangles]
-    area = 0.5 * np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1).sum()
-    # Points thinned at spacing h cover about 1.6 h^2 of area each (hexagonal packing would be 0.87 h^2;
-    # random sequential thinning leaves more room); relative^-2 is the density's share at each place.
-    base = math.sqrt(1.6 * area * np.mean(relative ** -2.0) / count)
-    return thin(candidates, base * relative)
+    candidates = surface_candidates(vertices, triangles, CANDIDATES_PER_POINT * count, rng)
+    cell = np.linalg.norm(candidates.max(axis=0) - candidates.min(axis=0)) / math.sqrt(count)
+    # The number of cells hit falls as the square of the cell size: a few corrections home in on `count`.
+    for _ in range(8):
+        kept = first_per_cell(candidates, cell, ratio, stretch)
+        if abs(len(kept) / count - 1) < 0.03:
+            break
+        cell *= math.sqrt(len(kept) / count)
+    return candidates[kept]
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("mesh")
+    parser.add_argument("mesh", help="a .off, .obj or .ply triangle mesh, or 'torus'")
     parser.add_argument("-o", "--output", required=True)
     parser.add_argument("--points", type=int, default=0)
     parser.add_argument("--ratio", type=float, default=30.0)
+    parser.add_argument("--stretch", type=float, default=2.0)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--mesh-out")
     args = parser.parse_args()
     vertices, triangles = torus_mesh() if args.mesh == "torus" else read_triangle_mesh(args.mesh)
-    points = resample(vertices, triangles, args.points or len(vertices), args.ratio, args.seed)
+    points = resample(vertices, triangles, args.points or len(vertices), args.ratio, args.stretch, args.seed)
     write_points(args.output, points)
     if args.mesh_out:
         write_off(args.mesh_out, vertices, triangles)
-    print(f"{len(points)} points, density ratio {args.ratio:g}", file=sys.stderr)
+    print(f"{len(points)} points, density ratio {args.ratio:g}, stretch {args.stretch:g}", file=sys.stderr)
 
 
 if __name__ == "__main__":
