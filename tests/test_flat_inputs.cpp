@@ -155,3 +155,87 @@ TEST_CASE("flat sets are reconstructed in their plane: one oriented manifold reg
         MESSAGE(set.name << ": " << triangles.size() << " triangles, face recall " << recall << ", area outside " << area_outside / area_inside);
     }
 }
+
+TEST_CASE("the planar triangulation is Delaunay, and the same whatever the insertion order") {
+    for (const FlatSet& set : all_flat_sets()) {
+        CAPTURE(set.name);
+        const uint32_t n = uint32_t(set.xyz.size() / 3);
+        // The points in reverse order: a triangle of the one is the triangle of the other over the same positions.
+        std::vector<double> reversed;
+        for (uint32_t i = n; i-- > 0;) reversed.insert(reversed.end(), &set.xyz[3 * i], &set.xyz[3 * i + 3]);
+        std::vector<std::set<Triangle>> triangulations;
+        const std::vector<double>* orders[] = {&set.xyz, &reversed};
+        for (const std::vector<double>* xyz : orders) {
+            dbrg_params params;
+            dbrg_params_init(&params);
+            dbrg::Context context(params);
+            dbrg::PlanarTriangulation triangulation(context.memory);
+            REQUIRE(triangulation.build(xyz->data(), n, context, dbrg::ProgressSpan(context, DBRG_STAGE_DELAUNAY)) == DBRG_OK);
+            char message[200] = "";
+            CHECK_MESSAGE(triangulation.validate(message, sizeof message), message);
+            std::set<Triangle> triangles;
+            for (uint32_t t = 0; t < triangulation.slot_count(); ++t) {
+                if (!triangulation.triangle_is_finite(t)) continue;
+                Triangle corners;
+                for (uint32_t lv = 0; lv < 3; ++lv) {
+                    const uint32_t v = triangulation.triangle_vertex(t, lv);
+                    corners[lv] = xyz == &set.xyz ? v : n - 1 - v;
+                }
+                triangles.insert(canonical(corners));
+            }
+            // Euler's formula over the convex hull: 2n - 2 - h triangles for h hull vertices, so at most 2n - 5.
+            CHECK(triangles.size() == triangulation.finite_triangle_count());
+            CHECK(triangles.size() <= 2 * size_t(n) - 5);
+            size_t not_empty = 0;
+            for (const Triangle& t : triangles) {
+                for (uint32_t p = 0; p < n; ++p) {
+                    not_empty += incircle_uv(&set.uv[2 * t[0]], &set.uv[2 * t[1]], &set.uv[2 * t[2]], &set.uv[2 * p]) > 0;
+                }
+            }
+            CHECK(not_empty == 0);
+            triangulations.push_back(triangles);
+        }
+        CHECK(triangulations[0] == triangulations[1]);
+    }
+}
+
+TEST_CASE("flat sets: too few distinct points and collinear points stay errors, and there are no tetrahedra") {
+    const FlatSet set = flat_set(FlatShape::disk, FlatSampling::grid, FlatPlane::tilted);
+    const dbrg_points points{set.xyz.data(), set.xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    char message[200] = "";
+    CHECK(dbrg_points_validate(&points, nullptr, message, sizeof message) == DBRG_OK);
+
+    dbrg_tetrahedralization* tets = nullptr;
+    CHECK(dbrg_tetrahedralize(&points, nullptr, &tets) == DBRG_ERR_DEGENERATE_INPUT);
+    CHECK(std::strstr(dbrg_tetrahedralization_message(tets), "coplanar") != nullptr);
+    CHECK(dbrg_tetrahedralization_tet_count(tets) == 0);
+    dbrg_tetrahedralization_destroy(tets);
+
+    // Three distinct points, repeated: a flat set, but fewer than the four distinct points every call needs.
+    std::vector<double> three;
+    for (int copy = 0; copy < 4; ++copy) three.insert(three.end(), set.xyz.begin(), set.xyz.begin() + 9);
+    CHECK(reconstruct(three).status == DBRG_ERR_TOO_FEW_POINTS);
+
+    std::vector<double> line;
+    for (int i = 0; i < 40; ++i) line.insert(line.end(), {0.25 * i, 3.0 - 0.5 * i, 1.0 + i});
+    CHECK(reconstruct(line).status == DBRG_ERR_DEGENERATE_INPUT);
+    // Meant to lie on one line, rounded off it: exactly coplanar, but no region.
+    std::vector<double> rounded;
+    for (int i = 0; i < 500; ++i) rounded.insert(rounded.end(), {i * 0.1, i * 0.2, i * 0.3});
+    CHECK(reconstruct(rounded).status == DBRG_ERR_DEGENERATE_INPUT);
+}
+
+TEST_CASE("flat sets: the statistics") {
+    const FlatSet set = flat_set(FlatShape::square_with_hole, FlatSampling::jittered, FlatPlane::tilted);
+    const Reconstruction r = reconstruct(set.xyz);
+    REQUIRE(r.status == DBRG_OK);
+    CHECK(r.stats.unique_points == set.xyz.size() / 3);
+    CHECK(r.stats.tetrahedra == 0);
+    CHECK(r.stats.triangles == r.triangles.size() / 3);
+    CHECK(r.stats.boundary_loops == 2);
+    CHECK(r.stats.components == 1);
+    CHECK(r.stats.candidates_evaluated >= r.stats.triangles - 1);
+    CHECK(r.stats.rejected_boundary > 0);  // the edges of the hole and the outline refuse what lies across them
+    CHECK(r.stats.predicate_calls > 0);
+    CHECK(r.stats.holes_found == 0);
+}
