@@ -160,7 +160,7 @@ dbrg_status PlanarTriangulation::insert(uint32_t v, uint32_t& near, Scratch& scr
         }
     }
     for (uint32_t t : scratch.cavity) {
-        vertices_[3 * size_t(t)] = NO_TRIANGLE;
+        vertices_[3 * size_t(t)] = FREE_SLOT;
         if (!scratch.free_slots.push_back(t)) return context.fail_out_of_memory();
     }
     // The region's rim is one cycle: each vertex on it starts one rim edge and ends another.

@@ -38,7 +38,7 @@ public:
     uint32_t slot_count() const { return static_cast<uint32_t>(vertices_.size() / 3); }
     uint32_t vertex_count() const { return vertex_count_; }
     uint32_t finite_triangle_count() const { return finite_triangles_; }
-    bool triangle_is_live(uint32_t t) const { return vertices_[3 * size_t(t)] != NO_TRIANGLE; }
+    bool triangle_is_live(uint32_t t) const { return vertices_[3 * size_t(t)] != FREE_SLOT; }
     bool triangle_is_finite(uint32_t t) const {
         return triangle_is_live(t) && vertices_[3 * size_t(t)] != PLANAR_INFINITE_VERTEX &&
                vertices_[3 * size_t(t) + 1] != PLANAR_INFINITE_VERTEX && vertices_[3 * size_t(t) + 2] != PLANAR_INFINITE_VERTEX;
@@ -74,7 +74,10 @@ private:
     uint32_t vertex_count_ = 0;
     uint32_t finite_triangles_ = 0;
     int normal_axis_ = 2;
-    Array<uint32_t> vertices_;  // 3 per slot; NO_TRIANGLE in the first for a free slot
+    // In the first vertex of a slot no triangle holds; never a vertex id (below DBRG_MAX_POINTS).
+    static constexpr uint32_t FREE_SLOT = UINT32_MAX - 1;
+
+    Array<uint32_t> vertices_;  // 3 per slot; FREE_SLOT in the first for a free slot
     Array<uint32_t> adjacent_;  // 3 per slot
 };
 
