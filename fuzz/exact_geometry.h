@@ -72,16 +72,12 @@ inline int incircle3d(const IntPoint& a, const IntPoint& b, const IntPoint& c, c
     return -sign_of(power);
 }
 
-// True when every point lies in one plane (fewer than four affinely independent points).
-inline bool all_coplanar(const IntPoint* points, size_t count) {
-    size_t b = 1, c = 0;
+// True when every point lies on one line (fewer than three affinely independent points).
+inline bool all_collinear(const IntPoint* points, size_t count) {
+    size_t b = 1;
     while (b < count && points[b].x == points[0].x && points[b].y == points[0].y && points[b].z == points[0].z) ++b;
-    if (b == count) return true;
-    for (c = b + 1; c < count && collinear(points[0], points[b], points[c]); ++c) {
-    }
-    if (c >= count) return true;
-    for (size_t d = c + 1; d < count; ++d) {
-        if (orient3d(points[0], points[b], points[c], points[d]) != 0) return false;
+    for (size_t c = b + 1; c < count; ++c) {
+        if (!collinear(points[0], points[b], points[c])) return false;
     }
     return true;
 }

@@ -70,6 +70,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     FUZZ_CHECK(conditioned.size() >= 4 && conditioned.size() + conditioned.duplicates_merged == set.count());
     check_conditioned(conditioned, set);
+    if (conditioned.flat) {  // no tetrahedra: the flat path of reconstruction is fuzz_reconstruct's
+        FUZZ_CHECK(refuse_flat(conditioned, set.count(), context) == DBRG_ERR_DEGENERATE_INPUT);
+        return 0;
+    }
 
     Tetrahedralization delaunay(context.memory);
     const dbrg_status built = delaunay.build(conditioned.coordinates.data(), conditioned.size(), context);

@@ -157,7 +157,8 @@ dbrg_status expected_status(const PointSet& set, const dbrg_points& points, Mang
     if (set.on_grid) {
         std::vector<IntPoint> grid(set.count());
         for (size_t i = 0; i < grid.size(); ++i) grid[i] = {set.grid[3 * i], set.grid[3 * i + 1], set.grid[3 * i + 2]};
-        if (all_coplanar(grid.data(), grid.size())) return DBRG_ERR_DEGENERATE_INPUT;
+        // Coplanar points are a flat surface; collinear ones are no surface.
+        if (all_collinear(grid.data(), grid.size())) return DBRG_ERR_DEGENERATE_INPUT;
     } else {
         flexible = true;
     }

@@ -1,5 +1,6 @@
 // Pipeline: runs the stages of one call in order — read points, condition, tetrahedralize, grow, fill
-// holes — and hands the results over in the caller's point indexing.
+// holes; or, for points all in one plane, triangulate in the plane and grow — and hands the results over in
+// the caller's point indexing.
 #include "pipeline.h"
 
 #include "points/point_input.h"
@@ -12,6 +13,8 @@
 #include "grow/region_growing.h"
 #include "growth_snapshots.h"
 #include "holes/hole_filling.h"
+#include "planar/planar_delaunay.h"
+#include "planar/planar_growing.h"
 #include "surface/surface.h"
 
 namespace dbrg {
@@ -37,6 +40,23 @@ dbrg_status prepare_points(const dbrg_points* points, Context& context, Conditio
 dbrg_status tetrahedralize(const ConditionedPoints& conditioned, Context& context, Tetrahedralization& delaunay) {
     return build_tetrahedralization(context.params.backend, conditioned.coordinates.data(), conditioned.size(),
                                     conditioned.order, context, delaunay);
+}
+
+// The flat path: the 2-D Delaunay triangulation of the points in their plane, grown with the same border
+// rule. Its triangles are all Delaunay and its region has no handles, and nothing of it is a hole the border
+// rule has not already judged: hole filling, the flips and the handle search have nothing to do.
+dbrg_status grow_flat_surface(const ConditionedPoints& conditioned, Context& context, Surface& surface) {
+    double start = seconds_now();
+    PlanarTriangulation triangulation(context.memory);
+    DBRG_PROPAGATE(triangulation.build(conditioned.coordinates.data(), conditioned.size(), context,
+                                       ProgressSpan(context, DBRG_STAGE_DELAUNAY)));
+    context.stats.seconds_delaunay = seconds_now() - start;
+    start = seconds_now();
+    PlanarGrower grower(triangulation, surface, context);
+    DBRG_PROPAGATE(grower.grow(ProgressSpan(context, DBRG_STAGE_GROW)));
+    context.stats.seconds_grow = seconds_now() - start;
+    GrowthSnapshots snapshots(conditioned, context);
+    return snapshots.finish(surface);
 }
 
 } // namespace
@@ -66,7 +86,9 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
 
     Surface surface(context.memory);
-    {
+    if (conditioned.flat) {
+        DBRG_PROPAGATE(grow_flat_surface(conditioned, context, surface));
+    } else {
         // The tetrahedralization and the grower's tables live until hole filling is done: their memory is
         // given back before the output is allocated.
         Tetrahedralization delaunay(context.memory);
@@ -96,6 +118,7 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
 dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, TetrahedraResult& result) {
     ConditionedPoints conditioned(context.memory);
     DBRG_PROPAGATE(prepare_points(points, context, conditioned));
+    DBRG_PROPAGATE(refuse_flat(conditioned, points->count, context));
     Tetrahedralization delaunay(context.memory);
     DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
     const ProgressSpan progress(context, DBRG_STAGE_OUTPUT);

@@ -45,7 +45,7 @@ std::vector<Input> inputs() {
     std::vector<double> plane;
     for (int i = 0; i < 12; ++i)
         for (int j = 0; j < 12; ++j) plane.insert(plane.end(), {double(i), double(j), 0.5 * i - 0.25 * j});
-    out.push_back({"coplanar (rejected)", plane});
+    out.push_back({"coplanar (flat: reconstructed, no tetrahedra)", plane});
     std::vector<double> three(samples::sample(samples::Shape::sphere, 3));
     for (int copy = 0; copy < 5; ++copy) three.insert(three.end(), three.begin(), three.begin() + 9);
     out.push_back({"three distinct points (rejected)", three});

@@ -349,7 +349,7 @@ TEST_CASE("threads inserting the last round at once make the tetrahedra of one t
     }
 }
 
-TEST_CASE("too few, collinear and coplanar inputs fail with a status") {
+TEST_CASE("too few and collinear inputs fail with a status; coplanar ones have no tetrahedra") {
     Context context(test_params());
     ConditionedPoints points(context.memory);
     Tetrahedralization tets(context.memory);
@@ -368,9 +368,13 @@ TEST_CASE("too few, collinear and coplanar inputs fail with a status") {
     std::vector<double> plane;
     for (int i = 0; i < 10; ++i)
         for (int j = 0; j < 10; ++j) plane.insert(plane.end(), {double(i), double(j), double(i + 2 * j)});
-    CHECK(condition_points(plane.data(), 100, context, points) == DBRG_ERR_DEGENERATE_INPUT);
+    CHECK(condition_points(plane.data(), 100, context, points) == DBRG_OK);
+    CHECK(points.flat);
+    CHECK(refuse_flat(points, 100, context) == DBRG_ERR_DEGENERATE_INPUT);
     CHECK(strstr(context.message(), "coplanar") != nullptr);
     CHECK(strstr(context.message(), "100") != nullptr);
+    points.coordinates.release();
+    points.input_index.release();
     CHECK(tets.build(plane.data(), 100, context) == DBRG_ERR_DEGENERATE_INPUT);
     CHECK(context.memory.bytes_in_use() == 0);
 }

@@ -154,16 +154,17 @@ TEST_CASE("degenerate inputs are named with their counts") {
         CHECK(strstr(context.message(), "50 distinct points") != nullptr);
         CHECK(strstr(context.message(), "collinear") != nullptr);
     }
-    SUBCASE("coplanar") {
+    SUBCASE("coplanar: conditioned, and flat") {
         std::vector<double> xyz;
         Random r(5);
         for (int i = 0; i < 40; ++i) {
             const double u = r.uniform(), v = r.uniform();
             xyz.insert(xyz.end(), {u, v, 0.5});
         }
-        CHECK(condition_points(xyz.data(), 40, context, out) == DBRG_ERR_DEGENERATE_INPUT);
-        CHECK(strstr(context.message(), "coplanar") != nullptr);
-        CHECK(strstr(context.message(), "line") == nullptr);
+        CHECK(condition_points(xyz.data(), 40, context, out) == DBRG_OK);
+        CHECK(out.flat);
+        CHECK(refuse_flat(out, 40, context) == DBRG_ERR_DEGENERATE_INPUT);
+        CHECK(strstr(context.message(), "40 distinct points (of 40 given) are coplanar") != nullptr);
     }
     SUBCASE("on one line but for rounding: coplanar, and said to be on a line") {
         // i * 0.1, i * 0.2, i * 0.3 are rounded off their line: exactly coplanar, not exactly collinear.
@@ -183,6 +184,7 @@ TEST_CASE("degenerate inputs are named with their counts") {
         for (int i = 0; i < 40; ++i) xyz.insert(xyz.end(), {double(i % 7), double(i / 7), 0.0});
         xyz.insert(xyz.end(), {3.0, 3.0, 1e-9});
         CHECK(condition_points(xyz.data(), 41, context, out) == DBRG_OK);
+        CHECK(!out.flat);
     }
 }
 

@@ -260,12 +260,15 @@ TEST_CASE("duplicated points are merged and refer to their first index") {
     CHECK(*std::max_element(result.triangles.begin(), result.triangles.end()) < n);
 }
 
-TEST_CASE("degenerate inputs fail with a status that names the problem") {
+TEST_CASE("degenerate inputs fail with a status that names the problem; a flat grid is a flat square") {
     std::vector<double> plane;
     for (int i = 0; i < 10; ++i) {
         for (int j = 0; j < 10; ++j) plane.insert(plane.end(), {double(i), double(j), 5.0});
     }
-    CHECK(test::reconstruct(plane).status == DBRG_ERR_DEGENERATE_INPUT);
+    const test::Reconstruction flat = test::reconstruct(plane);
+    CHECK(flat.status == DBRG_OK);
+    CHECK(flat.triangles.size() / 3 == 2 * 9 * 9);  // every cell of the grid, split once
+    CHECK(flat.boundary_loops == 1);
     std::vector<double> line;
     for (int i = 0; i < 10; ++i) line.insert(line.end(), {double(i), 2.0 * i, 3.0 * i});
     CHECK(test::reconstruct(line).status == DBRG_ERR_DEGENERATE_INPUT);

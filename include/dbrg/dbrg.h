@@ -64,7 +64,7 @@ typedef enum dbrg_status {
     DBRG_ERR_INVALID_PARAMETER = 2, /* a dbrg_params field is out of range (message names it) */
     DBRG_ERR_NON_FINITE_INPUT = 3,  /* a coordinate is NaN or infinite (message names the point index) */
     DBRG_ERR_TOO_FEW_POINTS = 4,    /* fewer than 4 distinct points */
-    DBRG_ERR_DEGENERATE_INPUT = 5,  /* all points collinear or coplanar: no volume to tetrahedralize */
+    DBRG_ERR_DEGENERATE_INPUT = 5,  /* all points collinear (no surface), or coplanar for dbrg_tetrahedralize */
     DBRG_ERR_TOO_MANY_POINTS = 6,   /* more points than DBRG_MAX_POINTS, or count * stride overflows */
     DBRG_ERR_OUT_OF_MEMORY = 7,     /* an allocation failed; nothing leaked */
     DBRG_ERR_CANCELLED = 8,         /* the progress callback asked to stop */
@@ -237,7 +237,8 @@ DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* messa
 /* Checks an input point array without computing anything: NULL data with a non-zero count, a
  * stride below 3 scalars, count * stride overflow, more than DBRG_MAX_POINTS points, a NaN or
  * infinite coordinate (the message names the first such point), fewer than 4 distinct points, all
- * points collinear or coplanar (DBRG_ERR_DEGENERATE_INPUT).
+ * points collinear (DBRG_ERR_DEGENERATE_INPUT). Coplanar points pass: dbrg_reconstruct accepts them
+ * (dbrg_tetrahedralize does not).
  * `allocator` may be NULL (malloc). `message` as in dbrg_params_validate. */
 DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_allocator* allocator,
                                           char* message, size_t message_capacity);
@@ -248,7 +249,12 @@ DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_
 
 typedef struct dbrg_mesh dbrg_mesh;
 
-/* Reconstructs an oriented manifold triangle surface through the points.
+/* Reconstructs an oriented manifold triangle surface through the points. Points that all lie exactly in
+ * one plane are reconstructed in it: their 2-D Delaunay triangles grown with the same border rule, each
+ * triangle measured by its smallest enclosing circle, faces turned to the plane normal whose largest
+ * component is positive. On that flat path the statistics tetrahedra, rejected_edge_nonmanifold,
+ * rejected_orientation, rejected_bowtie, rejected_dihedral, the hole fields, handles_removed and
+ * seconds_fill_holes stay 0 (nothing of those stages runs); seconds_delaunay is the 2-D triangulation's.
  * Returns DBRG_OK or the status of the first problem found.
  * points: the input; read during the call only.
  * params: NULL for the defaults; otherwise initialised with dbrg_params_init.
@@ -356,7 +362,8 @@ typedef struct dbrg_tetrahedralization dbrg_tetrahedralization;
 
 /* Computes the Delaunay tetrahedralization of the points (exact predicates, symbolic perturbation for
  * cospherical points). Uses params->backend, allocator and progress; the surface parameters are ignored.
- * Returns and fills *out exactly like dbrg_reconstruct. */
+ * Returns and fills *out exactly like dbrg_reconstruct; points all in one plane have no tetrahedra:
+ * DBRG_ERR_DEGENERATE_INPUT. */
 DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_params* params,
                                          dbrg_tetrahedralization** out);
 

@@ -1,5 +1,5 @@
 // Point conditioning: exact power-of-two rescaling, lexicographic order, duplicate merging and the
-// degeneracy checks (too few, collinear, coplanar) that the tetrahedralization relies on.
+// degeneracy checks (too few, collinear) and the flatness test that choose how the points are triangulated.
 #include "points/point_conditioning.h"
 
 #include <math.h>
@@ -120,6 +120,7 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     out.duplicates_merged = 0;
     out.scale_exponent = 0;
     out.origin[0] = out.origin[1] = out.origin[2] = 0.0;
+    out.flat = false;
     DBRG_PROPAGATE(check_point_count(count, context));
 
     // Each pass has a share of the progress roughly as its time on a large input.
@@ -213,10 +214,7 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
                             "all %zu distinct points (of %zu given) are coplanar: they lie on one line but for rounding",
                             distinct, count);
     }
-    if (rank == 3) {
-        return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %zu distinct points (of %zu given) are coplanar",
-                            distinct, count);
-    }
+    out.flat = rank == 3;
     return progress.report(1, 1);
 }
 
@@ -229,6 +227,12 @@ dbrg_status condition_points(const double* xyz, size_t count, Context& context, 
         out.input_index.release();
     }
     return status;
+}
+
+dbrg_status refuse_flat(const ConditionedPoints& points, size_t count, Context& context) {
+    if (!points.flat) return DBRG_OK;
+    return context.fail(DBRG_ERR_DEGENERATE_INPUT, "all %u distinct points (of %zu given) are coplanar", points.size(),
+                        count);
 }
 
 dbrg_status renumber_spatially(ConditionedPoints& points, Context& context) {

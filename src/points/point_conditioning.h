@@ -30,6 +30,9 @@ struct ConditionedPoints {
     int scale_exponent = 0;
     uint32_t duplicates_merged = 0;
     PointOrder order = PointOrder::any;  // hilbert once renumber_spatially has run
+    // All points lie exactly in one plane (as orient3d decides) and not on one line: a surface, but no
+    // volume to tetrahedralize.
+    bool flat = false;
 
     uint32_t size() const { return static_cast<uint32_t>(input_index.size()); }
     const double* point(uint32_t v) const { return coordinates.data() + 3 * static_cast<size_t>(v); }
@@ -40,11 +43,16 @@ struct ConditionedPoints {
 constexpr double VALIDATE_CONDITION_END = 0.8;
 
 // Conditions `count` finite points given as x, y, z triples. Merges points that are equal after the
-// transform. Fails with DBRG_ERR_TOO_FEW_POINTS (fewer than 4 distinct points) or DBRG_ERR_DEGENERATE_INPUT
-// (all collinear, all coplanar), each with a message saying how many distinct points there were, or
-// DBRG_ERR_CANCELLED; `out` is then left empty. Reports DBRG_STAGE_VALIDATE progress from
+// transform. Coplanar points are conditioned like any others, with out.flat set. Fails with
+// DBRG_ERR_TOO_FEW_POINTS (fewer than 4 distinct points) or DBRG_ERR_DEGENERATE_INPUT (all collinear, or
+// coplanar but on one line up to rounding), each with a message saying how many distinct points there were,
+// or DBRG_ERR_CANCELLED; `out` is then left empty. Reports DBRG_STAGE_VALIDATE progress from
 // VALIDATE_READ_SHARE to VALIDATE_CONDITION_END.
 dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out);
+
+// Where a volume is needed (tetrahedra): DBRG_ERR_DEGENERATE_INPUT, with a message saying how many of the
+// `count` points given were distinct, when `points` are flat; DBRG_OK otherwise.
+dbrg_status refuse_flat(const ConditionedPoints& points, size_t count, Context& context);
 
 // Renumbers conditioned points along a Hilbert curve, so that points close in space are close in memory
 // for the tetrahedralization and region growing that follow. The numbering stays a function of the

@@ -129,6 +129,14 @@ int incircle3d_sos(const double* a, const double* b, const double* c, const doub
     return 0;
 }
 
+int orient2d(const double* a, const double* b, const double* c, int u, int v, PredicateCounters& counters) {
+    ++counters.calls;
+    const int sign = filter::orient2d(a, b, c, u, v);
+    if (sign != filter::UNDECIDED) return sign;
+    ++counters.filter_failures;
+    return exact::orient2d(a, b, c, u, v);
+}
+
 int compare_points(const double* a, const double* b) {
     for (int k = 0; k < 3; ++k) {
         if (a[k] < b[k]) return -1;

@@ -23,7 +23,7 @@ namespace dbrg {
 // How often each path was taken; one instance per computation (no global state). Each public call counts
 // once; the orient3d/orient2d evaluations a perturbation runs internally are not counted separately.
 struct PredicateCounters {
-    uint64_t calls = 0;            // every orient3d / insphere_exact / insphere_sos / incircle3d_sos call
+    uint64_t calls = 0;            // every orient3d / insphere_exact / insphere_sos / incircle3d_sos / orient2d call
     uint64_t filter_failures = 0;  // the floating-point filter could not decide; exact arithmetic ran
     uint64_t perturbations = 0;    // the exact value was zero; symbolic perturbation decided
 
@@ -64,6 +64,12 @@ inline int insphere_sos(const double* a, const double* b, const double* c, const
 // limit for q going to infinity on that side): q's own cofactor is orient3d(a, b, c, d) = 0, so the rank
 // given to q, or to an infinite vertex, never matters. Never 0 for non-collinear a, b, c; 0 when collinear.
 int incircle3d_sos(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters);
+
+// Sign of det[a - c; b - c] over the coordinates u, v: +1 when the projections of a, b, c onto those two
+// coordinates turn counter-clockwise, -1 clockwise, 0 when they are collinear. Exact. For points in one
+// plane whose normal has a non-zero component on the third axis w, with (u, v) = (w + 1, w + 2) mod 3, it is
+// the sign of (b - a) x (c - a) along that axis: the orientation in the plane seen from the side w points to.
+int orient2d(const double* a, const double* b, const double* c, int u, int v, PredicateCounters& counters);
 
 // Lexicographic comparison of (x, y, z): negative, zero or positive. The order used by the perturbation
 // and by every tie-break in the library.

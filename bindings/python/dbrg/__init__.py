@@ -83,7 +83,7 @@ class TooFewPointsError(Error, ValueError):
 
 
 class DegenerateInputError(Error, ValueError):
-    """DBRG_ERR_DEGENERATE_INPUT: all points are collinear or coplanar."""
+    """DBRG_ERR_DEGENERATE_INPUT: all points are collinear (or, for delaunay, coplanar)."""
 
 
 class TooManyPointsError(Error, ValueError):
@@ -422,7 +422,7 @@ def delaunay(points, *, backend=None, threads=None, progress=None):
 
 
 def validate_points(points):
-    """Checks `points` as reconstruct() would (finite, at least 4 distinct, not all coplanar... as far as
+    """Checks `points` as reconstruct() would (finite, at least 4 distinct, not all collinear... as far as
     dbrg_points_validate goes) without computing anything; raises the same dbrg.Error, else returns None."""
     lib = library()
     array, view = _point_array(points)

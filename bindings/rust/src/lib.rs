@@ -51,7 +51,7 @@ pub enum Status {
     NonFiniteInput,
     /// Fewer than 4 distinct points.
     TooFewPoints,
-    /// All points are collinear or coplanar.
+    /// All points are collinear (or, for tetrahedralize, coplanar).
     DegenerateInput,
     /// More than `DBRG_MAX_POINTS` points.
     TooManyPoints,
