@@ -5,6 +5,7 @@ import os
 import resource
 import signal
 import stat
+import struct
 import subprocess
 import sys
 import tempfile
@@ -259,6 +260,94 @@ class Messages(Folder):
         for extension in (".ply", ".obj", ".off", ".stl", ".xyz", ".pts"):
             self.assertIn(extension, out.split("writes it")[0])
 
+
+def read_obj(path):
+    """(positions, normals, faces) of an OBJ the program wrote; a face is a list of (v, vn) 0-based pairs
+    (vn None when the corner names no normal)."""
+    positions, normals, faces = [], [], []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if words and words[0] == "v":
+                positions.append(tuple(float(w) for w in words[1:4]))
+            elif words and words[0] == "vn":
+                normals.append(tuple(float(w) for w in words[1:4]))
+            elif words and words[0] == "f":
+                corners = [corner.split("//") for corner in words[1:]]
+                faces.append([(int(c[0]) - 1, int(c[1]) - 1 if len(c) > 1 else None) for c in corners])
+    return positions, normals, faces
+
+
+def ply_header(path):
+    with open(path, "rb") as f:
+        return f.read().split(b"end_header\n")[0].decode()
+
+
+class ViewerOutput(Folder):
+    """Vertex normals on by default in .ply and .obj, --no-normals, --drop-unused, float in gives float out."""
+
+    def sphere(self, output, *extra):
+        code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "1500", "-q",
+                           "-o", output, *extra)
+        self.assertEqual(code, 0, err)
+
+    def test_obj_normals_are_unit_and_outward(self):
+        self.sphere(self.path("s.obj"))
+        positions, normals, faces = read_obj(self.path("s.obj"))
+        self.assertEqual(len(normals), len(positions))
+        centre = [sum(p[k] for p in positions) / len(positions) for k in range(3)]
+        for p, n in zip(positions, normals):
+            self.assertAlmostEqual(math.hypot(*n), 1.0, places=5)
+            self.assertGreater(sum((p[k] - centre[k]) * n[k] for k in range(3)), 0.0)
+        self.assertTrue(all(v == vn for face in faces for v, vn in face))
+
+    def test_ply_normals_by_default_and_none_when_asked(self):
+        self.sphere(self.path("s.ply"))
+        self.assertIn("property float nx\nproperty float ny\nproperty float nz", ply_header(self.path("s.ply")))
+        self.sphere(self.path("plain.ply"), "--no-normals")
+        self.assertNotIn("nx", ply_header(self.path("plain.ply")))
+        self.sphere(self.path("plain.obj"), "--no-normals")
+        positions, normals, faces = read_obj(self.path("plain.obj"))
+        self.assertEqual(normals, [])
+        self.assertTrue(all(vn is None for face in faces for _, vn in face))
+
+    def test_drop_unused_keeps_the_same_triangles(self):
+        # A boundary factor this tight leaves most points out of the surface.
+        tight = ("--boundary-factor", "1.1")
+        self.sphere(self.path("all.obj"), *tight)
+        self.sphere(self.path("used.obj"), *tight, "--drop-unused")
+        all_positions, _, all_faces = read_obj(self.path("all.obj"))
+        positions, normals, faces = read_obj(self.path("used.obj"))
+        used = {v for face in faces for v, _ in face}
+        self.assertEqual(used, set(range(len(positions))))
+        self.assertLess(len(positions), len(all_positions))
+        self.assertEqual(len(normals), len(positions))
+        by_position = lambda points, face: [points[v] for v, _ in face]
+        self.assertEqual([by_position(positions, face) for face in faces],
+                         [by_position(all_positions, face) for face in all_faces])
+        # The kept vertices are in their input order.
+        order = [all_positions.index(p) for p in positions]
+        self.assertEqual(order, sorted(order))
+
+    def test_float_input_gives_float_output(self):
+        code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "800", "-q",
+                           "-o", self.path("double.ply"))
+        self.assertEqual(code, 0, err)
+        self.assertIn("property double x", ply_header(self.path("double.ply")))
+        # Points on a sphere stored as float32 (golden-angle spiral) give float32 positions out.
+        count = 800
+        rows = []
+        for i in range(count):
+            z = 1 - 2 * (i + 0.5) / count
+            r, angle = math.sqrt(1 - z * z), math.pi * (1 + 5 ** 0.5) * i
+            rows.append(struct.pack("<3f", r * math.cos(angle), r * math.sin(angle), z))
+        points = self.path("points.ply")
+        with open(points, "wb") as f:
+            f.write(b"ply\nformat binary_little_endian 1.0\nelement vertex %d\n" % count)
+            f.write(b"property float x\nproperty float y\nproperty float z\nend_header\n" + b"".join(rows))
+        code, _, err = run("reconstruct", points, "-q", "-o", self.path("float.ply"))
+        self.assertEqual(code, 0, err)
+        self.assertIn("property float x\nproperty float y\nproperty float z\n", ply_header(self.path("float.ply")))
 
 if __name__ == "__main__":
     DBRG = os.path.abspath(sys.argv.pop(1))

@@ -41,8 +41,8 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 bool same_mesh(const MeshData& a, const MeshData& b) {
-    return same_bits(a.positions, b.positions) && a.triangles == b.triangles && a.has_faces == b.has_faces &&
-           a.non_finite_at == b.non_finite_at;
+    return same_bits(a.positions, b.positions) && a.triangles == b.triangles && a.normals == b.normals &&
+           a.has_faces == b.has_faces && a.non_finite_at == b.non_finite_at;
 }
 
 // Reads `bytes` through a source that hands them out 1 to 7 at a time into a 16-byte first buffer, as
@@ -323,7 +323,7 @@ struct LineWriter {
 
 std::string number_text(double value) {
     std::string text;
-    append_double(text, value);
+    append_values(text, &value, 1);
     return text;
 }
 

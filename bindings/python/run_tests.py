@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Runs the Python binding's tests from the source tree: pytest when it is installed, unittest
-otherwise. Exits 77 (meson's "skipped") when this interpreter has no numpy.
+"""Runs the Python binding's tests: pytest when it is installed, unittest otherwise. Exits 77 (meson's
+"skipped") when this interpreter has no numpy. The package tested is the source tree's, unless
+--installed asks for the one this interpreter imports from its own site-packages.
 
     DBRG_LIBRARY=build/src/libdbrg.so python3 bindings/python/run_tests.py [-k pattern | test names]
+    venv/bin/python bindings/python/run_tests.py --installed
 """
 
 import os
@@ -18,12 +20,23 @@ def main(arguments):
     except ImportError:
         print("skipped: %s has no numpy (Debian: apt-get install python3-numpy)" % sys.executable)
         return 77
-    sys.path[:0] = [HERE, TESTS]
-    os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [HERE, os.environ.get("PYTHONPATH")]))
-    print("python %s, numpy %s, DBRG_LIBRARY=%s" % (sys.version.split()[0], numpy.__version__,
-                                                    os.environ.get("DBRG_LIBRARY", "(unset)")))
     use_unittest = "--unittest" in arguments
-    arguments = [a for a in arguments if a != "--unittest"]
+    installed = "--installed" in arguments
+    arguments = [a for a in arguments if a not in ("--unittest", "--installed")]
+    if installed:
+        # The script's own folder holds the source package; it must not shadow the installed one.
+        sys.path[:] = [TESTS] + [entry for entry in sys.path if os.path.abspath(entry or ".") != HERE]
+        import dbrg
+        if os.path.abspath(dbrg.__file__).startswith(HERE + os.sep):
+            print("--installed: %s imports the source tree's package (%s)" % (sys.executable, dbrg.__file__))
+            return 1
+    else:
+        sys.path[:0] = [HERE, TESTS]
+        os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [HERE, os.environ.get("PYTHONPATH")]))
+        import dbrg
+    print("python %s, numpy %s, dbrg from %s, DBRG_LIBRARY=%s" % (
+        sys.version.split()[0], numpy.__version__, os.path.dirname(dbrg.__file__),
+        os.environ.get("DBRG_LIBRARY", "(unset)")))
     if not use_unittest:
         try:
             import pytest

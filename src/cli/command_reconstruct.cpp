@@ -14,6 +14,8 @@
 #include "dbrg/dbrg.h"
 #include "io/json_writer.h"
 #include "io/mesh_io.h"
+#include "io/unused_vertices.h"
+#include "io/vertex_normals.h"
 #include "samples/samples.h"
 
 namespace dbrg::cli {
@@ -25,7 +27,8 @@ const char* const RECONSTRUCT_USAGE =
     "\n"
     "Reconstructs an oriented manifold triangle surface through the points of INPUT (.ply .obj .off .stl\n"
     ".xyz .pts; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with\n"
-    "every input point as a vertex, in input order. OUTPUT is replaced only once it is completely written.\n"
+    "every input point as a vertex, in input order, and in .ply and .obj each vertex's normal (pointing\n"
+    "to the outside of closed surfaces). OUTPUT is replaced only once it is completely written.\n"
     "\n"
     "  -o, --output FILE        the mesh to write (required)\n"
     "  --demo                   use a generated sample instead of INPUT\n"
@@ -44,6 +47,8 @@ const char* const RECONSTRUCT_USAGE =
     "  --backend builtin|tetgen the Delaunay tetrahedralization to use (default builtin)\n"
     "  --threads N              threads for the stages that split (0: all, default; 1: none);\n"
     "                           the mesh is the same for any N\n"
+    "  --no-normals             write no vertex normals\n"
+    "  --drop-unused            write only the vertices the triangles use (renumbered, in input order)\n"
     "  --snapshots K            also write the surface at K evenly spaced stages of growth (points\n"
     "                           reached: 1/K, 2/K, ..., end of growing) as OUTPUT with .growth-1 ...\n"
     "                           .growth-K before its extension\n"
@@ -195,6 +200,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--sliver-angle", nullptr, true}, {"--no-fill-holes", nullptr, false},  {"--max-hole-edges", nullptr, true},
         {"--max-components", nullptr, true}, {"--backend", nullptr, true},       {"--stats-json", nullptr, true},
         {"--threads", nullptr, true},      {"--snapshots", nullptr, true},       {"--quiet", "-q", false},
+        {"--no-normals", nullptr, false},  {"--drop-unused", nullptr, false},
     };
     ParsedArgs args;
     std::string error;
@@ -264,6 +270,9 @@ int run_reconstruct(int argc, char** argv) {
     const uint32_t* triangles = dbrg_mesh_triangles(result);
     mesh.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(result)));
     mesh.has_faces = true;
+    const bool format_has_normals = *format == io::MeshFormat::ply_binary || *format == io::MeshFormat::obj;
+    if (format_has_normals && !args.has("--no-normals")) mesh.normals = io::vertex_normals(mesh.positions, mesh.triangles);
+    if (args.has("--drop-unused")) io::drop_unused_vertices(mesh);
     const io::IoStatus written = io::write_mesh(output, mesh);
     const double seconds_write = seconds_now() - start;
 

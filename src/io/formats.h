@@ -46,11 +46,17 @@ void note_non_finite(MeshData& out, double value, const Place& place) {
     if (!std::isfinite(value) && out.non_finite_at.empty()) out.non_finite_at = place();
 }
 
-// Appends the shortest decimal text that reads back as exactly `value` (locale-independent).
-inline void append_double(std::string& out, double value) {
-    char text[32];
-    const auto result = std::to_chars(text, text + sizeof text, value);
-    out.append(text, result.ptr);
+
+// Appends `count` values separated by blanks, each as the shortest decimal text that reads back as exactly
+// it (a float's own shortest text for a float; locale-independent).
+template <class Number>
+void append_values(std::string& out, const Number* values, size_t count) {
+    for (size_t k = 0; k < count; ++k) {
+        if (k > 0) out.push_back(' ');
+        char text[32];
+        const auto result = std::to_chars(text, text + sizeof text, values[k]);
+        out.append(text, result.ptr);
+    }
 }
 
 inline void append_unsigned(std::string& out, uint64_t value) {
@@ -59,15 +65,9 @@ inline void append_unsigned(std::string& out, uint64_t value) {
     out.append(text, result.ptr);
 }
 
-// The body shared by OFF and ascii PLY: a line "x y z" per vertex, then a line "3 a b c" per triangle.
-inline void append_vertex_and_triangle_lines(std::string& out, const MeshData& mesh) {
-    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-        for (size_t k = 0; k < 3; ++k) {
-            if (k > 0) out.push_back(' ');
-            append_double(out, mesh.positions[3 * v + k]);
-        }
-        out.push_back('\n');
-    }
+
+// The faces of OFF and ascii PLY: a line "3 a b c" per triangle.
+inline void append_triangle_lines(std::string& out, const MeshData& mesh) {
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         out += "3";
         for (size_t k = 0; k < 3; ++k) {

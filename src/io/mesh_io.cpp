@@ -43,6 +43,9 @@ IoStatus without_exceptions(Action&& action) {
 IoStatus check_mesh(const MeshData& mesh) {
     if (mesh.positions.size() % 3 != 0) return IoStatus::failure("the position array's length is not a multiple of 3");
     if (mesh.triangles.size() % 3 != 0) return IoStatus::failure("the triangle array's length is not a multiple of 3");
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
+        return IoStatus::failure("the normal array's length differs from the position array's");
+    }
     if (mesh.triangle_count() > std::numeric_limits<uint32_t>::max()) return IoStatus::failure("too many triangles to write");
     const size_t vertex_count = mesh.vertex_count();
     for (size_t i = 0; i < mesh.triangles.size(); ++i) {

@@ -20,6 +20,9 @@ namespace dbrg::io {
 struct MeshData {
     std::vector<double> positions;    // x, y, z of vertex 0, then vertex 1, ...
     std::vector<uint32_t> triangles;  // three vertex indices per triangle, each < vertex_count()
+    // nx, ny, nz per vertex, or empty. PLY and OBJ write them (PLY nx/ny/nz, OBJ vn); the PLY reader
+    // fills them when the vertices have all three, other readers leave them empty.
+    std::vector<float> normals;
     bool has_faces = false;           // the file declares faces (a PLY face element, OBJ f lines, ...), even zero
     // Where the first NaN or infinite vertex coordinate is, in the words of the readers' messages ("line 7"
     // in a text format, "byte offset 1234" in a binary one), or empty when all are finite: a caller that
@@ -71,7 +74,8 @@ IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, Mesh
 
 // Writes `mesh` to `path` as `format`, through write_file (file_output.h): a failed write leaves the file
 // that was there untouched. Positions round-trip exactly through every format except STL, which stores
-// float32 (exact for coordinates that are floats already). XYZ writes the points only.
+// float32 (exact for coordinates that are floats already). XYZ writes the points only; normals go to PLY
+// (float nx ny nz) and OBJ (vn lines, faces as v//vn) and round-trip exactly through PLY.
 IoStatus write_mesh(const std::string& path, const MeshData& mesh, MeshFormat format);
 
 // As write_mesh, with the format chosen by the extension of `path`.

@@ -83,18 +83,27 @@ IoStatus read_obj(ByteSource& source, MeshData& out) {
 void write_obj(const MeshData& mesh, std::string& out) {
     out = "# written by dbrg\n";
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-        out += "v";
-        for (size_t k = 0; k < 3; ++k) {
-            out.push_back(' ');
-            append_double(out, mesh.positions[3 * v + k]);
-        }
+        out += "v ";
+        append_values(out, &mesh.positions[3 * v], 3);
+        out.push_back('\n');
+    }
+    // Normal k belongs to vertex k, so a corner names the same number twice: "f a//a b//b c//c".
+    const bool with_normals = !mesh.normals.empty();
+    for (size_t v = 0; with_normals && v < mesh.vertex_count(); ++v) {
+        out += "vn ";
+        append_values(out, &mesh.normals[3 * v], 3);
         out.push_back('\n');
     }
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         out += "f";
         for (size_t k = 0; k < 3; ++k) {
             out.push_back(' ');
-            append_unsigned(out, uint64_t(mesh.triangles[3 * t + k]) + 1);
+            const uint64_t index = uint64_t(mesh.triangles[3 * t + k]) + 1;
+            append_unsigned(out, index);
+            if (with_normals) {
+                out += "//";
+                append_unsigned(out, index);
+            }
         }
         out.push_back('\n');
     }

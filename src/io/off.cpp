@@ -124,7 +124,11 @@ void write_off(const MeshData& mesh, std::string& out) {
     out.push_back(' ');
     append_unsigned(out, mesh.triangle_count());
     out += " 0\n";
-    append_vertex_and_triangle_lines(out, mesh);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        append_values(out, &mesh.positions[3 * v], 3);
+        out.push_back('\n');
+    }
+    append_triangle_lines(out, mesh);
 }
 
 } // namespace dbrg::io

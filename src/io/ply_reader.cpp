@@ -1,7 +1,8 @@
-// PLY reader: ascii, binary little- and big-endian; vertex x/y/z, face lists and triangle strips.
+// PLY reader: ascii, binary little- and big-endian; vertex x/y/z and nx/ny/nz, face lists and triangle
+// strips.
 //
-// Every element and property other than vertex x/y/z, face vertex_indices (or vertex_index) and
-// tristrips vertex_indices is read past and ignored. Counts in the header are checked against the bytes
+// Every element and property other than vertex x/y/z and nx/ny/nz, face vertex_indices (or vertex_index)
+// and tristrips vertex_indices is read past and ignored. Counts in the header are checked against the bytes
 // that follow before anything is reserved, so a lying header fails at once instead of allocating; when
 // the input's size is unknown (a pipe), nothing is reserved for them and the data runs out as it is read.
 #include <cstring>
@@ -59,7 +60,11 @@ size_t type_size(PlyType type) {
 bool is_integer(PlyType type) { return type != PlyType::float32 && type != PlyType::float64; }
 
 // What the reader does with a property's values.
-enum class Role : uint8_t { skip, x, y, z, corners };
+enum class Role : uint8_t { skip, x, y, z, nx, ny, nz, corners };
+
+// The vertex values a Role from x to nz fills, in that order.
+const size_t VERTEX_VALUES = 6;
+const char* const VERTEX_VALUE_NAMES[VERTEX_VALUES] = {"x", "y", "z", "nx", "ny", "nz"};
 
 struct Property {
     std::string name;
@@ -90,6 +95,7 @@ struct Header {
     size_t header_lines = 0;  // lines up to and including end_header
     uint32_t vertex_count = 0;
     bool has_vertex_element = false;
+    bool has_normals = false;  // the vertex element has nx, ny and nz
 };
 
 IoStatus header_error(size_t line, const std::string& what) {
@@ -107,9 +113,10 @@ ElementKind element_kind(std::string_view name) {
 // `names` holds the names of the element's earlier properties.
 IoStatus assign_role(const Element& element, const std::unordered_set<std::string>& names, Property& property, size_t line) {
     const std::string& name = property.name;
-    if (element.kind == ElementKind::vertex && (name == "x" || name == "y" || name == "z")) {
+    for (size_t k = 0; element.kind == ElementKind::vertex && k < VERTEX_VALUES; ++k) {
+        if (name != VERTEX_VALUE_NAMES[k]) continue;
         if (property.is_list) return header_error(line, "vertex property '" + name + "' is a list");
-        property.role = name == "x" ? Role::x : name == "y" ? Role::y : Role::z;
+        property.role = static_cast<Role>(static_cast<int>(Role::x) + k);
     }
     const bool corner_name = name == "vertex_indices" || (element.kind == ElementKind::face && name == "vertex_index");
     if ((element.kind == ElementKind::face || element.kind == ElementKind::tristrips) && corner_name) {
@@ -223,6 +230,7 @@ IoStatus parse_header(ByteSource& source, Header& header) {
         if (element.kind == ElementKind::vertex && !(has_role(Role::x) && has_role(Role::y) && has_role(Role::z))) {
             return header_error(header.header_lines, "the vertex element lacks an x, y or z property");
         }
+        if (element.kind == ElementKind::vertex) header.has_normals = has_role(Role::nx) && has_role(Role::ny) && has_role(Role::nz);
         if (element.kind != ElementKind::vertex && element.kind != ElementKind::other && !has_role(Role::corners)) {
             return header_error(header.header_lines, "element '" + element.name + "' has no vertex_indices list");
         }
@@ -459,9 +467,10 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
         // when that is unknown, the arrays grow with what is read.
         const size_t reserved = source.size_known() ? static_cast<size_t>(element.count) : 0;
         if (is_vertex) out.positions.reserve(3 * reserved);
+        if (is_vertex && header.has_normals) out.normals.reserve(3 * reserved);
         if (element.kind == ElementKind::face) out.triangles.reserve(out.triangles.size() + 3 * reserved);
         for (uint64_t item = 0; item < element.count; ++item) {
-            double xyz[3] = {0.0, 0.0, 0.0};
+            double values[VERTEX_VALUES] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // by Role, x to nz
             corners.begin(element.kind);
             for (const Property& property : element.properties) {
                 if (!property.is_list) {
@@ -469,9 +478,9 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
                         if (!source.skip(property.type)) return fail(source.error());
                         continue;
                     }
-                    double& value = xyz[static_cast<int>(property.role) - static_cast<int>(Role::x)];
-                    if (!source.read_number(property.type, value)) return fail(source.error());
-                    note_non_finite(out, value, [&] { return source.place(); });
+                    const size_t slot = static_cast<size_t>(property.role) - static_cast<size_t>(Role::x);
+                    if (!source.read_number(property.type, values[slot])) return fail(source.error());
+                    if (slot < 3) note_non_finite(out, values[slot], [&] { return source.place(); });
                     continue;
                 }
                 int64_t count = 0;
@@ -490,7 +499,10 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
                     if (!corners.add(index, error)) return fail(element.name + " " + std::to_string(item) + ": " + error);
                 }
             }
-            if (is_vertex) out.positions.insert(out.positions.end(), xyz, xyz + 3);
+            if (is_vertex) out.positions.insert(out.positions.end(), values, values + 3);
+            if (is_vertex && header.has_normals) {
+                for (size_t k = 3; k < VERTEX_VALUES; ++k) out.normals.push_back(static_cast<float>(values[k]));
+            }
             if (element.kind == ElementKind::face || element.kind == ElementKind::tristrips) {
                 if (!corners.end(error)) return fail(element.name + " " + std::to_string(item) + ": " + error);
             }

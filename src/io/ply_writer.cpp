@@ -1,4 +1,5 @@
-// PLY writer: binary little-endian or ascii, float32 coordinates when that loses nothing, else float64.
+// PLY writer: binary little-endian or ascii, float32 coordinates when that loses nothing (always for input
+// read as float32), else float64; float32 normals when the mesh has them.
 #include <cmath>
 #include <cstring>
 
@@ -20,17 +21,30 @@ void append_little_endian(std::string& out, Unsigned bits) {
     for (size_t i = 0; i < sizeof bits; ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xff));
 }
 
+void append_binary_float(std::string& out, float value) {
+    uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    append_little_endian(out, bits);
+}
+
 void append_binary_coordinate(std::string& out, double value, bool as_float) {
     if (as_float) {
-        const float narrow = static_cast<float>(value);
-        uint32_t bits;
-        std::memcpy(&bits, &narrow, sizeof bits);
-        append_little_endian(out, bits);
+        append_binary_float(out, static_cast<float>(value));
     } else {
         uint64_t bits;
         std::memcpy(&bits, &value, sizeof bits);
         append_little_endian(out, bits);
     }
+}
+
+// "x y z [nx ny nz]" of vertex v, ending the line.
+void append_vertex_line(std::string& out, const MeshData& mesh, size_t v) {
+    append_values(out, &mesh.positions[3 * v], 3);
+    if (!mesh.normals.empty()) {
+        out.push_back(' ');
+        append_values(out, &mesh.normals[3 * v], 3);
+    }
+    out.push_back('\n');
 }
 
 } // namespace
@@ -44,6 +58,8 @@ void write_ply(const MeshData& mesh, bool binary, std::string& out) {
     out += " 1.0\ncomment written by dbrg\nelement vertex ";
     append_unsigned(out, mesh.vertex_count());
     for (const char* axis : {"x", "y", "z"}) out += std::string("\nproperty ") + type + " " + axis;
+    const bool write_normals = !mesh.normals.empty();
+    if (write_normals) out += "\nproperty float nx\nproperty float ny\nproperty float nz";
     if (write_faces) {
         out += "\nelement face ";
         append_unsigned(out, mesh.triangle_count());
@@ -52,15 +68,22 @@ void write_ply(const MeshData& mesh, bool binary, std::string& out) {
     out += "\nend_header\n";
 
     if (binary) {
-        out.reserve(out.size() + mesh.positions.size() * (as_float ? 4 : 8) + mesh.triangle_count() * 13);
-        for (double value : mesh.positions) append_binary_coordinate(out, value, as_float);
+        out.reserve(out.size() + mesh.positions.size() * (as_float ? 4 : 8) + mesh.normals.size() * 4 +
+                    mesh.triangle_count() * 13);
+        for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+            for (size_t k = 0; k < 3; ++k) append_binary_coordinate(out, mesh.positions[3 * v + k], as_float);
+            if (write_normals) {
+                for (size_t k = 0; k < 3; ++k) append_binary_float(out, mesh.normals[3 * v + k]);
+            }
+        }
         for (size_t t = 0; t < mesh.triangle_count(); ++t) {
             out.push_back(3);
             for (size_t k = 0; k < 3; ++k) append_little_endian(out, mesh.triangles[3 * t + k]);
         }
         return;
     }
-    append_vertex_and_triangle_lines(out, mesh);
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) append_vertex_line(out, mesh, v);
+    append_triangle_lines(out, mesh);
 }
 
 } // namespace dbrg::io

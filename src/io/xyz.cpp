@@ -56,10 +56,7 @@ IoStatus read_xyz(ByteSource& source, MeshData& out) {
 void write_xyz(const MeshData& mesh, std::string& out) {
     out.clear();
     for (size_t v = 0; v < mesh.vertex_count(); ++v) {
-        for (size_t k = 0; k < 3; ++k) {
-            if (k > 0) out.push_back(' ');
-            append_double(out, mesh.positions[3 * v + k]);
-        }
+        append_values(out, &mesh.positions[3 * v], 3);
         out.push_back('\n');
     }
 }

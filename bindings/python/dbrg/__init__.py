@@ -17,14 +17,15 @@ report and raises KeyboardInterrupt.
 import collections
 import ctypes
 import operator
+import os
 import signal
 import threading
 import warnings
 
 import numpy as np
 
-from . import _capi
-from ._library import LibraryError, library, library_path
+from . import _capi, _io
+from ._library import LibraryError, io_library, library, library_path
 
 __version__ = _capi.DBRG_VERSION_STRING
 LibraryError.__module__ = __name__
@@ -294,6 +295,12 @@ def _copy_u32(pointer, rows, columns=None):
 class Mesh:
     """The result of reconstruct(); everything is copied out of the library, so it lives on its own.
 
+    vertices       (N, 3) copy of the input points (float32 or float64 as given), which the triangles
+                   index; points left out of the surface are among them, used by no triangle.
+    vertex_normals (N, 3) float32 unit normals, each the angle-weighted mean of its triangles' normals,
+                   outward on closed surfaces; (0, 0, 0) where no triangle uses the vertex. Computed
+                   on first use by libdbrg_io, as the dbrg program writes them.
+    write(path)    writes the mesh with the project's own writers (libdbrg_io), as the dbrg program does.
     triangles      (M, 3) uint32 indices into the input points, counter-clockwise seen from outside
                    (closed components face outward); merged duplicate points are represented by the
                    smallest input index among them.
@@ -306,14 +313,56 @@ class Mesh:
                    issued as a RuntimeWarning by reconstruct()).
     """
 
-    __slots__ = ("triangles", "boundary_loops", "stats", "point_count", "warning")
+    __slots__ = ("vertices", "triangles", "boundary_loops", "stats", "point_count", "warning", "_vertex_normals")
 
-    def __init__(self, triangles, boundary_loops, stats, point_count, warning=""):
+    def __init__(self, vertices, triangles, boundary_loops, stats, point_count, warning=""):
+        self.vertices = vertices
         self.triangles = triangles
         self.boundary_loops = boundary_loops
         self.stats = stats
         self.point_count = point_count
         self.warning = warning
+        self._vertex_normals = None
+
+    def _arrays(self):
+        """The vertices as C-contiguous float64 and the triangles as C-contiguous uint32, as libdbrg_io
+        takes them."""
+        positions = np.ascontiguousarray(self.vertices, dtype=np.float64)
+        triangles = np.ascontiguousarray(self.triangles, dtype=np.uint32)
+        return positions, triangles
+
+    @property
+    def vertex_normals(self):
+        if self._vertex_normals is None:
+            positions, triangles = self._arrays()
+            normals = np.empty((len(positions), 3), dtype=np.float32)
+            status = io_library().dbrg_io_vertex_normals(
+                _pointer(positions, ctypes.c_double), len(positions), _pointer(triangles, ctypes.c_uint32),
+                len(triangles), _pointer(normals, ctypes.c_float))
+            if status != 0:
+                raise ValueError("the mesh's triangles do not index its vertices (%s)" % _io.DBRG_IO_STATUS.get(status))
+            self._vertex_normals = normals
+        return self._vertex_normals
+
+    def write(self, path, *, normals=True):
+        """Writes the mesh to `path`, the format chosen by its extension (.ply binary, .obj, .off, .stl,
+        .xyz), with the dbrg program's writers: the file is replaced only once completely written.
+        normals: write vertex_normals too (PLY nx ny nz, OBJ vn; other formats have no place for them).
+        Raises ValueError for an unknown extension, OSError when the file cannot be written."""
+        positions, triangles = self._arrays()
+        normal_array = self.vertex_normals if normals else None
+        message = ctypes.create_string_buffer(1024)
+        status = io_library().dbrg_io_write_mesh(
+            os.fsencode(path), _pointer(positions, ctypes.c_double), len(positions),
+            _pointer(triangles, ctypes.c_uint32), len(triangles),
+            None if normal_array is None else _pointer(normal_array, ctypes.c_float), message, len(message))
+        text = message.value.decode("utf-8", "replace")
+        if status == 1:
+            raise ValueError(text)
+        if status == 3:
+            raise MemoryError(text)
+        if status != 0:
+            raise OSError(text)
 
     def __repr__(self):
         return "<dbrg.Mesh: %d triangles over %d points, %d boundary loops>" % (
@@ -335,7 +384,11 @@ def _stats_dict(lib, handle):
     return {name: getattr(stats, name) for name, _ in _capi.dbrg_stats._fields_ if name != "struct_size"}
 
 
-def _mesh(lib, handle):
+def _pointer(array, c_type):
+    return array.ctypes.data_as(ctypes.POINTER(c_type))
+
+
+def _mesh(lib, handle, points):
     count = lib.dbrg_mesh_triangle_count(handle)
     triangles = _copy_u32(lib.dbrg_mesh_triangles(handle), count, 3)
     loops = []
@@ -344,7 +397,7 @@ def _mesh(lib, handle):
         pointer = lib.dbrg_mesh_boundary_loop(handle, loop, ctypes.byref(length))
         loops.append(_copy_u32(pointer, length.value))
     warning = lib.dbrg_mesh_message(handle).decode("utf-8", "replace")
-    return Mesh(triangles, loops, _stats_dict(lib, handle), lib.dbrg_mesh_point_count(handle), warning)
+    return Mesh(np.array(points), triangles, loops, _stats_dict(lib, handle), lib.dbrg_mesh_point_count(handle), warning)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -384,12 +437,11 @@ def reconstruct(points, *, sliver_angle=None, boundary_factor=None, boundary_mea
     handle = _capi.mesh_p()
     with watcher:
         status = lib.dbrg_reconstruct(ctypes.byref(view), ctypes.byref(params), ctypes.byref(handle))
-    del array  # the library keeps no pointer to the points
     try:
         watcher.raise_pending()
         if status != _OK:
             raise _error(lib, status, lib.dbrg_mesh_message(handle) if handle else b"")
-        mesh = _mesh(lib, handle)
+        mesh = _mesh(lib, handle, array)
         if mesh.warning:
             warnings.warn(mesh.warning, RuntimeWarning, stacklevel=2)
         return mesh

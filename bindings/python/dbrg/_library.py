@@ -1,7 +1,9 @@
-"""Finds and loads the dbrg shared library once, checking that its version matches this package.
+"""Finds and loads the dbrg shared library once, checking that its version matches this package; and
+libdbrg_io (the project's writers and vertex normals, include/dbrg/dbrg_io.h) when a mesh is written.
 
-Search order: the file named by the environment variable DBRG_LIBRARY (nothing else is tried when it
-is set), a copy next to this package, then the system loader (LD_LIBRARY_PATH, ld.so.cache, ...).
+Search order: the file named by the environment variable DBRG_LIBRARY (DBRG_IO_LIBRARY for libdbrg_io;
+nothing else is tried when it is set), a copy next to this package, then the system loader
+(LD_LIBRARY_PATH, ld.so.cache, ...).
 """
 
 import ctypes
@@ -10,7 +12,7 @@ import os
 import sys
 import threading
 
-from . import _capi
+from . import _capi, _io
 
 
 class LibraryError(ImportError):
@@ -20,32 +22,33 @@ class LibraryError(ImportError):
 _lock = threading.Lock()
 _library = None
 _library_path = None
+_io_library = None
 
 
-def _file_names():
+def _file_names(base="dbrg"):
     major = _capi.DBRG_VERSION_MAJOR
     if sys.platform == "win32":
-        return ["dbrg.dll", "libdbrg.dll", "dbrg-%d.dll" % major]
+        return ["%s.dll" % base, "lib%s.dll" % base, "%s-%d.dll" % (base, major)]
     if sys.platform == "darwin":
-        return ["libdbrg.%d.dylib" % major, "libdbrg.dylib"]
-    return ["libdbrg.so.%d" % major, "libdbrg.so"]
+        return ["lib%s.%d.dylib" % (base, major), "lib%s.dylib" % base]
+    return ["lib%s.so.%d" % (base, major), "lib%s.so" % base]
 
 
-def _candidates():
+def _candidates(variable="DBRG_LIBRARY", base="dbrg"):
     """Yields (what to pass to CDLL, whether it is an explicit path)."""
-    explicit = os.environ.get("DBRG_LIBRARY")
+    explicit = os.environ.get(variable)
     if explicit:
         yield explicit, True
         return
     here = os.path.dirname(os.path.abspath(__file__))
-    for name in _file_names():
+    for name in _file_names(base):
         path = os.path.join(here, name)
         if os.path.exists(path):
             yield path, True
     # Bare names: the system loader searches its own path.
-    for name in _file_names():
+    for name in _file_names(base):
         yield name, False
-    found = ctypes.util.find_library("dbrg")
+    found = ctypes.util.find_library(base)
     if found:
         yield found, False
 
@@ -113,3 +116,34 @@ def library_path():
     """What the library was loaded from (a path, or a name resolved by the system loader)."""
     library()
     return _library_path
+
+
+def io_library():
+    """Returns libdbrg_io as a ctypes.CDLL with its functions declared, loading it on first use. It is
+    built from the same tree as libdbrg, so it has no version check of its own."""
+    global _io_library
+    if _io_library is None:
+        with _lock:
+            if _io_library is None:
+                _io_library = _open_io()
+    return _io_library
+
+
+def _open_io():
+    tried = []
+    for target, explicit in _candidates("DBRG_IO_LIBRARY", "dbrg_io"):
+        try:
+            library = ctypes.CDLL(target)
+        except OSError as error:
+            if explicit:
+                raise LibraryError("cannot load the dbrg I/O library %r: %s" % (target, error)) from None
+            tried.append(target)
+            continue
+        try:
+            _io.declare(library)
+        except AttributeError as error:
+            raise LibraryError("%s is not a usable libdbrg_io (%s)" % (target, error)) from None
+        return library
+    raise LibraryError(
+        "cannot find libdbrg_io, which writes mesh files (tried %s). Install the package with `pip install .` "
+        "from the repository, or set DBRG_IO_LIBRARY=/path/to/build/src/io/libdbrg_io.so" % ", ".join(tried))

@@ -51,7 +51,7 @@ class LibraryLookup(unittest.TestCase):
     def test_nothing_found_explains_how_to_point_at_the_library(self):
         env = {"DBRG_LIBRARY": "", "LD_LIBRARY_PATH": ""}
         code = ("import dbrg._library as l\n"
-                "l._file_names = lambda: ['libdbrg-does-not-exist.so']\n"
+                "l._file_names = lambda base='dbrg': ['libdbrg-does-not-exist.so']\n"
                 "l.ctypes.util.find_library = lambda name: None\n"
                 "import dbrg; dbrg.library_version()")
         run = run_python(code, **env)
