@@ -176,6 +176,7 @@ static void test_point_checks(void) {
     double xyz[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
     float xyz_f[4 * 4] = {0, 0, 0, 9, 1, 0, 0, 9, 0, 1, 0, 9, 0, 0, 1, 9};
     double coplanar[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 3, 0};
+    double collinear[5 * 3] = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 5, 5, 5};
     double duplicates[5 * 3] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0};
     dbrg_points p;
 
@@ -208,8 +209,10 @@ static void test_point_checks(void) {
     CHECK(strstr(message, "has an infinite y coordinate") != NULL);
 
     p = as_points(coplanar, 5, 3 * sizeof(double), DBRG_FLOAT64);
+    CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_OK); /* a flat set is a surface */
+    p = as_points(collinear, 5, 3 * sizeof(double), DBRG_FLOAT64);
     CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_DEGENERATE_INPUT);
-    CHECK(strstr(message, "coplanar") != NULL);
+    CHECK(strstr(message, "collinear") != NULL);
     p = as_points(duplicates, 5, 3 * sizeof(double), DBRG_FLOAT64);
     CHECK(dbrg_points_validate(&p, NULL, message, sizeof message) == DBRG_ERR_TOO_FEW_POINTS);
     CHECK(strstr(message, "3 distinct") != NULL);
