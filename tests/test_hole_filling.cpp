@@ -407,6 +407,24 @@ TEST_CASE("a handle whose short cycles are short in space is cut and both sides 
     }
 }
 
+TEST_CASE("a small handle on a surface with a border is cut all the same, and the border stays") {
+    // The thin tube above with one face missing: a border of 3 edges, left open (no hole filling), so the
+    // component is not closed; the handle is found on the surface with its border capped.
+    HandMade made(torus_points(12, 3, 1.0, 0.1), torus_faces(12, 3));
+    REQUIRE(made.surface.remove_face(0));
+    REQUIRE(made.boundary_halfedges() == 3);
+    HoleFiller filler(made.delaunay, made.surface, made.causes, made.context);
+    REQUIRE(filler.remove_small_handles(ProgressSpan(made.context, DBRG_STAGE_FILL_HOLES)) == DBRG_OK);
+    require_valid(made.surface);
+    CHECK(made.context.stats.handles_removed == 1);
+    CHECK(made.boundary_halfedges() == 3);
+    Array<uint32_t> components(made.context.memory);
+    CHECK(made.surface.label_components(components) == 1);
+    // V - E + F of a disk-like surface with one border: 1.
+    const int64_t v = made.surface.used_vertex_count(), f = made.surface.live_face_count(), e = (3 * f + 3) / 2;
+    CHECK(v - e + f == 1);
+}
+
 namespace {
 
 // A share of the stage's progress, with its start and without its end.

@@ -55,10 +55,10 @@ struct CycleCandidate {
 struct SurfaceTopology {
     explicit SurfaceTopology(Memory& memory) : face_component(memory), genus(memory) {}
     Array<uint32_t> face_component;
-    Array<int32_t> genus;  // per component; -1 for a component with a boundary or a pinched vertex
+    Array<int32_t> genus;  // per component; -1 for a component with a pinched vertex
     uint32_t components = 0;
     uint64_t boundary_halfedges = 0;
-    uint32_t total_genus = 0;  // over the closed components
+    uint32_t total_genus = 0;  // over the components
 };
 
 namespace {
@@ -88,16 +88,26 @@ dbrg_status measure_topology(const Surface& surface, const ProgressSpan& progres
         // F - E: a face counts 1, each interior edge -1/2 from each side, each boundary edge -1.
         chi[k] += 2 - 3 - int64_t(open);  // doubled: 2F - 2E = 2 - (3 + open)
     }
+    Array<uint8_t> pinched(context.memory);
+    Array<uint32_t> loops(context.memory);
+    if (!pinched.resize(components, 0) || !loops.resize(components, 0)) return context.fail_out_of_memory();
     for (uint32_t v = 0; v < surface.vertex_count(); ++v) {
         if (!surface.is_used(v)) continue;
         const uint32_t k = topology.face_component[Surface::face_of(surface.vertex_halfedge(v))];
         chi[k] += 2;
-        if (surface.is_pinched(v)) boundary[k] += 1;  // not a closed manifold component: left alone
+        if (surface.is_pinched(v)) pinched[k] = 1;  // not a manifold component: left alone
+    }
+    Array<uint8_t> walked(context.memory);
+    if (!walked.resize(3 * size_t(surface.face_count()), 0)) return context.fail_out_of_memory();
+    for (uint32_t h = 0; h < 3 * surface.face_count(); ++h) {
+        if (!surface.is_boundary(h) || walked[h] || surface.face_removed(Surface::face_of(h))) continue;
+        surface.walk_loop(h, [&](uint32_t g) { walked[g] = 1; });
+        ++loops[topology.face_component[Surface::face_of(h)]];
     }
     for (uint32_t k = 0; k < components; ++k) {
         topology.boundary_halfedges += boundary[k];
-        // chi[k] is 2 (V - E + F); a closed orientable surface has V - E + F = 2 - 2 g.
-        topology.genus[k] = boundary[k] != 0 ? -1 : int32_t((4 - chi[k]) / 4);
+        // chi[k] is 2 (V - E + F); an orientable surface with b boundary loops has V - E + F = 2 - 2 g - b.
+        topology.genus[k] = pinched[k] ? -1 : int32_t((4 - chi[k] - 2 * int64_t(loops[k])) / 4);
         if (topology.genus[k] > 0) topology.total_genus += uint32_t(topology.genus[k]);
     }
     return DBRG_OK;
@@ -153,40 +163,69 @@ dbrg_status HoleFiller::remove_small_handles(const ProgressSpan& progress) {
                     const uint32_t x = surface_.target(h);
                     if (tree_parent[x] == NO_VERTEX) {
                         tree_parent[x] = u;
-                        kind[h] = kind[surface_.twin(h)] = TREE_EDGE;
+                        kind[h] = TREE_EDGE;
+                        if (!surface_.is_boundary(h)) kind[surface_.twin(h)] = TREE_EDGE;
                         queue.push_back(x);
                     }
                 });
             }
         }
 
-        // A spanning tree C of the faces through the edges not in T (the cotree); the edges in neither are
-        // the leftover edges, 2 g of them per component, and each closes one generator of the homology.
-        Array<uint32_t> face_parent(memory), face_order(memory);  // face_parent: the half-edge of f on its parent edge
-        Array<uint8_t> face_seen(memory);
+        // Each boundary loop is capped with a virtual face (node faces + its number), so that the
+        // components are closed surfaces of the same genus: a cycle around a border is separating then,
+        // and only handles are left to find.
+        Array<uint32_t> cap_of(memory);  // per boundary half-edge of a target face: its cap's node
+        Array<uint32_t> cap_start(memory), cap_edges(memory);  // the caps' half-edges, cap by cap
+        if (!cap_of.resize(3 * size_t(faces), NO_FACE) || !cap_start.push_back(0)) return context_.fail_out_of_memory();
+        for (uint32_t h = 0; h < 3 * faces; ++h) {
+            if (!surface_.is_boundary(h) || cap_of[h] != NO_FACE || !target_face(Surface::face_of(h))) continue;
+            const uint32_t cap = faces + static_cast<uint32_t>(cap_start.size() - 1);
+            const bool walked = surface_.walk_loop(h, [&](uint32_t g) {
+                cap_of[g] = cap;
+                return cap_edges.push_back(g);
+            });
+            if (!walked || !cap_start.push_back(static_cast<uint32_t>(cap_edges.size()))) return context_.fail_out_of_memory();
+        }
+        const uint32_t nodes = faces + static_cast<uint32_t>(cap_start.size() - 1);
+        // The face (or cap) across half-edge h from its own face.
+        auto across = [&](uint32_t h) { return surface_.is_boundary(h) ? cap_of[h] : Surface::face_of(surface_.twin(h)); };
+
+        // A spanning tree C of the faces and caps through the edges not in T (the cotree); the edges in
+        // neither are the leftover edges, 2 g of them per component, and each closes one generator of the
+        // homology. node_parent_edge[n]: the half-edge of n on its parent edge (for a cap, its face's).
+        Array<uint32_t> node_parent(memory), node_parent_edge(memory), node_order(memory);
+        Array<uint8_t> node_seen(memory);
         Array<uint32_t> generator(memory);  // the leftover edges by their smaller half-edge
-        if (!face_parent.resize(faces, NO_HALFEDGE) || !face_seen.resize(faces, 0) || !face_order.reserve(faces)) {
+        if (!node_parent.resize(nodes, NO_FACE) || !node_parent_edge.resize(nodes, NO_HALFEDGE) ||
+            !node_seen.resize(nodes, 0) || !node_order.reserve(nodes)) {
             return context_.fail_out_of_memory();
         }
         for (uint32_t root = 0; root < faces; ++root) {
-            if (face_seen[root] || !target_face(root)) continue;
-            face_seen[root] = 1;
-            face_order.push_back(root);
-            for (size_t q = face_order.size() - 1; q < face_order.size(); ++q) {
-                DBRG_PROPAGATE(cotree_progress.report_at(q, faces, REPORT_STEP));
-                const uint32_t f = face_order[q];
-                for (uint32_t h = 3 * f; h < 3 * f + 3; ++h) {
-                    const uint32_t t = surface_.twin(h);
-                    if (t == NO_HALFEDGE || kind[h] != OTHER_EDGE) continue;
-                    if (face_seen[Surface::face_of(t)]) {
-                        // Seen from both sides, so kept from the side of its smaller half-edge.
-                        if (h < t && !generator.push_back(h)) return context_.fail_out_of_memory();
+            if (node_seen[root] || !target_face(root)) continue;
+            node_seen[root] = 1;
+            node_order.push_back(root);
+            for (size_t q = node_order.size() - 1; q < node_order.size(); ++q) {
+                DBRG_PROPAGATE(cotree_progress.report_at(q, nodes, REPORT_STEP));
+                const uint32_t n = node_order[q];
+                const uint32_t* edges = n < faces ? nullptr : &cap_edges[cap_start[n - faces]];
+                const uint32_t degree = n < faces ? 3 : cap_start[n - faces + 1] - cap_start[n - faces];
+                for (uint32_t i = 0; i < degree; ++i) {
+                    const uint32_t h = n < faces ? 3 * n + i : edges[i];  // a half-edge of the edge crossed
+                    if (kind[h] != OTHER_EDGE) continue;
+                    const uint32_t other = n < faces ? across(h) : Surface::face_of(h);
+                    if (node_seen[other]) {
+                        // Seen from both sides, so kept once: from the side of its smaller half-edge, or
+                        // for a border edge, from its face.
+                        const bool keep = surface_.is_boundary(h) ? n < faces : h < surface_.twin(h);
+                        if (keep && !generator.push_back(h)) return context_.fail_out_of_memory();
                         continue;
                     }
-                    face_seen[Surface::face_of(t)] = 1;
-                    face_parent[Surface::face_of(t)] = t;
-                    kind[h] = kind[t] = COTREE_EDGE;
-                    face_order.push_back(Surface::face_of(t));
+                    node_seen[other] = 1;
+                    node_parent[other] = n;
+                    node_parent_edge[other] = surface_.is_boundary(h) ? h : surface_.twin(h);
+                    kind[h] = COTREE_EDGE;
+                    if (!surface_.is_boundary(h)) kind[surface_.twin(h)] = COTREE_EDGE;
+                    node_order.push_back(other);
                 }
             }
         }
@@ -194,29 +233,30 @@ dbrg_status HoleFiller::remove_small_handles(const ProgressSpan& progress) {
         std::sort(generator.begin(), generator.end());
         const uint32_t words = std::min<uint32_t>(MAX_WORDS, uint32_t((generator.size() + 63) / 64));
         if (words == 0) break;
-        // label[f]: the generators whose dual cycle (the leftover edge's dual plus the cotree path between its
-        // faces) crosses the cotree edge from f to its parent: the leftover edges with exactly one face in
-        // f's subtree.
+        // label[n]: the generators whose dual cycle (the leftover edge's dual plus the cotree path between its
+        // faces) crosses the cotree edge from node n to its parent: the leftover edges with exactly one side
+        // in n's subtree.
         Array<uint64_t> label(memory);
-        if (!label.resize(size_t(faces) * words, 0)) return context_.fail_out_of_memory();
+        if (!label.resize(size_t(nodes) * words, 0)) return context_.fail_out_of_memory();
         for (uint32_t i = 0; i < generator.size() && i < 64 * words; ++i) {
             const uint32_t h = generator[i];
             label[size_t(Surface::face_of(h)) * words + i / 64] ^= uint64_t(1) << (i % 64);
-            label[size_t(Surface::face_of(surface_.twin(h))) * words + i / 64] ^= uint64_t(1) << (i % 64);
+            label[size_t(across(h)) * words + i / 64] ^= uint64_t(1) << (i % 64);
         }
-        for (size_t q = face_order.size(); q-- > 0;) {
-            const uint32_t f = face_order[q];
-            if (face_parent[f] == NO_HALFEDGE) continue;
-            const uint32_t parent = Surface::face_of(surface_.twin(face_parent[f]));
-            for (uint32_t w = 0; w < words; ++w) label[size_t(parent) * words + w] ^= label[size_t(f) * words + w];
+        for (size_t q = node_order.size(); q-- > 0;) {
+            const uint32_t n = node_order[q];
+            if (node_parent[n] == NO_FACE) continue;
+            for (uint32_t w = 0; w < words; ++w) label[size_t(node_parent[n]) * words + w] ^= label[size_t(n) * words + w];
         }
         // The class of edge h: the generators whose dual cycles cross it. A cycle is non-separating exactly
         // when the sum of its edges' classes is not zero (it crosses some dual cycle an odd number of times).
         auto edge_class_word = [&](uint32_t h, uint32_t w) -> uint64_t {
             if (kind[h] == TREE_EDGE) return 0;
-            const uint32_t t = surface_.twin(h);
+            const uint32_t t = surface_.is_boundary(h) ? h : surface_.twin(h);
             if (kind[h] == COTREE_EDGE) {
-                const uint32_t child = face_parent[Surface::face_of(h)] == h ? Surface::face_of(h) : Surface::face_of(t);
+                // The child is the side whose parent edge this is.
+                const uint32_t f = Surface::face_of(h);
+                const uint32_t child = node_parent_edge[f] == h || node_parent_edge[f] == t ? f : across(h);
                 return label[size_t(child) * words + w];
             }
             const uint32_t key = h < t ? h : t;
@@ -242,10 +282,10 @@ dbrg_status HoleFiller::remove_small_handles(const ProgressSpan& progress) {
         // (Erickson and Har-Peled: it is one tree path, an edge and another tree path of a shortest-path
         // tree from the seed). The edges of non-zero class are the ones the dual cycles cross, so the
         // seeds lie along 2 g dual cycles as long as the surface is wide: far fewer than the vertices.
-        for (uint32_t f : face_order) {
+        for (uint32_t n : node_order) {
             uint64_t any = 0;
-            for (uint32_t w = 0; w < words; ++w) any |= label[size_t(f) * words + w];
-            const uint32_t h = face_parent[f];
+            for (uint32_t w = 0; w < words; ++w) any |= label[size_t(n) * words + w];
+            const uint32_t h = node_parent_edge[n];
             if (any != 0 && h != NO_HALFEDGE) is_seed[surface_.origin(h)] = is_seed[surface_.target(h)] = 1;
         }
         for (uint32_t i = 0; i < generator.size() && i < 64 * words; ++i) {
