@@ -115,7 +115,9 @@ typedef enum dbrg_stage {
     DBRG_STAGE_GROW = 3,         /* region growing; the fraction follows the faces grown, then the
                                     removal of small islands and the edge flips */
     DBRG_STAGE_FILL_HOLES = 4,   /* recursive hole filling */
-    DBRG_STAGE_OUTPUT = 5        /* building the result */
+    DBRG_STAGE_OUTPUT = 5,       /* building the result */
+    DBRG_STAGE_CLEAN = 6         /* since 0.4.0: cleaning the points (outliers, near-duplicates, noise);
+                                    between DBRG_STAGE_VALIDATE and DBRG_STAGE_DELAUNAY */
 } dbrg_stage;
 
 /* Called from the computing thread with the current stage and its completed fraction in [0, 1].
