@@ -17,30 +17,12 @@ namespace {
 // than descending further for a handful of points.
 constexpr uint32_t LEAF_POINTS = 8;
 
-struct Box {
-    double lo[3], hi[3];
-};
-
-// The tree in heap layout: node 1 holds points order[0 .. count), node v's children are 2v and 2v + 1, each
-// with half of v's range (the first the smaller half); the nodes at `depth` are the leaves.
-struct KdTree {
-    explicit KdTree(Memory& memory) : order(memory), boxes(memory) {}
-    Array<uint32_t> order;
-    Array<Box> boxes;
-    uint32_t count = 0;
-    int depth = 0;
-
-    size_t range_begin(uint32_t node, int level) const {
-        const uint32_t position = node - (1u << level);
-        return part_begin(count, 1u << level, position);
-    }
-};
-
 double squared_distance(const double* a, const double* b) {
     const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
     return dx * dx + dy * dy + dz * dz;
 }
 
+template <class Box>
 double squared_distance_to_box(const double* p, const Box& box) {
     double sum = 0;
     for (int a = 0; a < 3; ++a) {
@@ -51,6 +33,7 @@ double squared_distance_to_box(const double* p, const Box& box) {
     return sum;
 }
 
+template <class Box>
 Box box_of(const double* xyz, const uint32_t* indices, size_t n) {
     Box box;
     for (int a = 0; a < 3; ++a) box.lo[a] = box.hi[a] = xyz[3 * size_t(indices[0]) + a];
@@ -62,60 +45,6 @@ Box box_of(const double* xyz, const uint32_t* indices, size_t n) {
         }
     }
     return box;
-}
-
-// Splits every node of one level at the median of its widest axis (ties by index, so the split depends on
-// the coordinates and the numbering only).
-void split_level(const double* xyz, KdTree& tree, int level, uint32_t parts) {
-    const uint32_t nodes = 1u << level;
-    for_each_slice(nodes, parts, [&](size_t first, size_t last) {
-        for (size_t position = first; position < last; ++position) {
-            const uint32_t node = nodes + static_cast<uint32_t>(position);
-            const size_t begin = tree.range_begin(node, level), end = tree.range_begin(node + 1, level);
-            if (end - begin < 2) continue;
-            uint32_t* indices = tree.order.data();
-            const Box box = box_of(xyz, indices + begin, end - begin);
-            int axis = 0;
-            for (int a = 1; a < 3; ++a) {
-                if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
-            }
-            const size_t middle = tree.range_begin(2 * node + 1, level + 1);
-            std::nth_element(indices + begin, indices + middle, indices + end, [xyz, axis](uint32_t a, uint32_t b) {
-                const double u = xyz[3 * size_t(a) + axis], v = xyz[3 * size_t(b) + axis];
-                return u < v || (u == v && a < b);
-            });
-        }
-    });
-}
-
-dbrg_status build_tree(const double* xyz, uint32_t count, const ProgressSpan& progress, KdTree& tree) {
-    Context& context = progress.context();
-    tree.count = count;
-    tree.depth = 0;
-    while ((size_t(count) + (size_t(1) << tree.depth) - 1) >> tree.depth > LEAF_POINTS) ++tree.depth;
-    const size_t nodes = size_t(2) << tree.depth;
-    if (!tree.order.resize(count) || !tree.boxes.resize(nodes)) return context.fail_out_of_memory();
-    for (uint32_t i = 0; i < count; ++i) tree.order[i] = i;
-    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
-    for (int level = 0; level < tree.depth; ++level) {
-        DBRG_PROPAGATE(progress.report(size_t(level), size_t(tree.depth) + 1));
-        split_level(xyz, tree, level, parts);
-    }
-    // Boxes bottom-up: a leaf's from its points, a node's from its children's.
-    const uint32_t leaves = 1u << tree.depth;
-    for (uint32_t node = leaves; node < 2 * leaves; ++node) {
-        // No leaf is empty: the depth is the smallest with at most LEAF_POINTS a leaf, so count >= leaves.
-        const size_t begin = tree.range_begin(node, tree.depth), end = tree.range_begin(node + 1, tree.depth);
-        tree.boxes[node] = box_of(xyz, tree.order.data() + begin, end - begin);
-    }
-    for (uint32_t node = leaves - 1; node >= 1; --node) {
-        const Box &a = tree.boxes[2 * node], &b = tree.boxes[2 * node + 1];
-        for (int axis = 0; axis < 3; ++axis) {
-            tree.boxes[node].lo[axis] = std::min(a.lo[axis], b.lo[axis]);
-            tree.boxes[node].hi[axis] = std::max(a.hi[axis], b.hi[axis]);
-        }
-    }
-    return progress.report(1, 1);
 }
 
 // The k nearest found so far, nearest first.
@@ -140,8 +69,73 @@ struct Candidates {
     }
 };
 
-void search(const double* xyz, const KdTree& tree, uint32_t query, Candidates& found) {
-    const double* q = xyz + 3 * size_t(query);
+} // namespace
+
+size_t NeighbourIndex::range_begin(uint32_t node, int level) const {
+    return part_begin(count_, 1u << level, node - (1u << level));
+}
+
+// Splits every node of one level at the median of its widest axis (ties by index, so the split depends on
+// the coordinates and the numbering only).
+void NeighbourIndex::split_level(int level, uint32_t parts) {
+    const uint32_t nodes = 1u << level;
+    const double* xyz = xyz_;
+    for_each_slice(nodes, parts, [&](size_t first, size_t last) {
+        for (size_t position = first; position < last; ++position) {
+            const uint32_t node = nodes + static_cast<uint32_t>(position);
+            const size_t begin = range_begin(node, level), end = range_begin(node + 1, level);
+            if (end - begin < 2) continue;
+            uint32_t* indices = order_.data();
+            const Box box = box_of<Box>(xyz, indices + begin, end - begin);
+            int axis = 0;
+            for (int a = 1; a < 3; ++a) {
+                if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
+            }
+            const size_t middle = range_begin(2 * node + 1, level + 1);
+            std::nth_element(indices + begin, indices + middle, indices + end, [xyz, axis](uint32_t a, uint32_t b) {
+                const double u = xyz[3 * size_t(a) + axis], v = xyz[3 * size_t(b) + axis];
+                return u < v || (u == v && a < b);
+            });
+        }
+    });
+}
+
+dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const ProgressSpan& progress) {
+    Context& context = progress.context();
+    xyz_ = xyz;
+    count_ = count;
+    depth_ = 0;
+    while ((size_t(count) + (size_t(1) << depth_) - 1) >> depth_ > LEAF_POINTS) ++depth_;
+    if (!order_.resize(count) || !boxes_.resize(size_t(2) << depth_)) return context.fail_out_of_memory();
+    for (uint32_t i = 0; i < count; ++i) order_[i] = i;
+    if (count == 0) return progress.report(1, 1);
+    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
+    for (int level = 0; level < depth_; ++level) {
+        DBRG_PROPAGATE(progress.report(size_t(level), size_t(depth_) + 1));
+        split_level(level, parts);
+    }
+    // Boxes bottom-up: a leaf's from its points, a node's from its children's. No leaf is empty: the depth is
+    // the smallest with at most LEAF_POINTS a leaf, so count >= leaves.
+    const uint32_t leaves = 1u << depth_;
+    for (uint32_t node = leaves; node < 2 * leaves; ++node) {
+        const size_t begin = range_begin(node, depth_), end = range_begin(node + 1, depth_);
+        boxes_[node] = box_of<Box>(xyz, order_.data() + begin, end - begin);
+    }
+    for (uint32_t node = leaves - 1; node >= 1; --node) {
+        const Box &a = boxes_[2 * node], &b = boxes_[2 * node + 1];
+        for (int axis = 0; axis < 3; ++axis) {
+            boxes_[node].lo[axis] = std::min(a.lo[axis], b.lo[axis]);
+            boxes_[node].hi[axis] = std::max(a.hi[axis], b.hi[axis]);
+        }
+    }
+    return progress.report(1, 1);
+}
+
+uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) const {
+    Candidates found;
+    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (found.k == 0) return 0;
+    const double* q = xyz_ + 3 * size_t(query);
     struct Pending {
         uint32_t node;
         int level;
@@ -154,54 +148,54 @@ void search(const double* xyz, const KdTree& tree, uint32_t query, Candidates& f
     while (top > 0) {
         const Pending pending = stack[--top];
         if (found.full() && pending.distance >= found.worst()) continue;
-        if (pending.level == tree.depth) {
-            const size_t begin = tree.range_begin(pending.node, pending.level);
-            const size_t end = tree.range_begin(pending.node + 1, pending.level);
+        if (pending.level == depth_) {
+            const size_t begin = range_begin(pending.node, pending.level), end = range_begin(pending.node + 1, pending.level);
             for (size_t position = begin; position < end; ++position) {
-                const uint32_t p = tree.order[position];
-                if (p != query) found.offer(squared_distance(q, xyz + 3 * size_t(p)), p);
+                const uint32_t p = order_[position];
+                if (p != query) found.offer(squared_distance(q, xyz_ + 3 * size_t(p)), p);
             }
             continue;
         }
         const uint32_t left = 2 * pending.node, right = left + 1;
-        const double to_left = squared_distance_to_box(q, tree.boxes[left]);
-        const double to_right = squared_distance_to_box(q, tree.boxes[right]);
+        const double to_left = squared_distance_to_box(q, boxes_[left]);
+        const double to_right = squared_distance_to_box(q, boxes_[right]);
         const bool left_first = to_left <= to_right;
         // The nearer child goes on top, to be searched first.
         stack[top++] = Pending{left_first ? right : left, pending.level + 1, left_first ? to_right : to_left};
         stack[top++] = Pending{left_first ? left : right, pending.level + 1, left_first ? to_left : to_right};
     }
+    for (uint32_t j = 0; j < found.size; ++j) out[j] = found.index[j];
+    return found.size;
 }
 
-} // namespace
-
-dbrg_status find_nearest_neighbours(const double* xyz, uint32_t count, uint32_t wanted, const ProgressSpan& progress,
+dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted, const ProgressSpan& progress,
                                     uint32_t& k, Array<uint32_t>& neighbours) {
     Context& context = progress.context();
+    const uint32_t count = index.size();
     k = std::min(std::min(wanted, MAX_NEIGHBOURS), count > 0 ? count - 1 : 0);
     neighbours.clear();
     if (k == 0) return progress.report(1, 1);
-    KdTree tree(context.memory);
-    DBRG_PROPAGATE(build_tree(xyz, count, progress.part(0.0, 0.3), tree));
     if (!neighbours.resize(size_t(k) * count)) return context.fail_out_of_memory();
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size.
     const size_t step = step_items(parts) / 16;
-    const ProgressSpan searching = progress.part(0.3, 1.0);
     for (size_t first = 0; first < count; first += step) {
-        DBRG_PROPAGATE(searching.report(first, count));
+        DBRG_PROPAGATE(progress.report(first, count));
         const size_t last = std::min(size_t(count), first + step);
         for_each_slice(last - first, parts, [&](size_t begin, size_t end) {
-            Candidates found;
-            found.k = k;
             for (size_t i = first + begin; i < first + end; ++i) {
-                found.size = 0;
-                search(xyz, tree, static_cast<uint32_t>(i), found);
-                for (uint32_t j = 0; j < k; ++j) neighbours[size_t(k) * i + j] = found.index[j];
+                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i);
             }
         });
     }
-    return searching.report(1, 1);
+    return progress.report(1, 1);
+}
+
+dbrg_status find_nearest_neighbours(const double* xyz, uint32_t count, uint32_t wanted, const ProgressSpan& progress,
+                                    uint32_t& k, Array<uint32_t>& neighbours) {
+    NeighbourIndex index(progress.context().memory);
+    DBRG_PROPAGATE(index.build(xyz, count, progress.part(0.0, 0.3)));
+    return find_nearest_neighbours(index, wanted, progress.part(0.3, 1.0), k, neighbours);
 }
 
 } // namespace dbrg
