@@ -90,7 +90,8 @@ bool solve_cholesky(double m[TERMS][TERMS], double b[TERMS], double x[TERMS]) {
 
 } // namespace
 
-LocalFit fit_local_quadric(Vec3 point, const Vec3* points, uint32_t count) {
+LocalFit fit_local_quadric(const Vec3* points, uint32_t count) {
+    const Vec3 point{0, 0, 0};
     Vec3 centroid{0, 0, 0};
     for (uint32_t i = 0; i < count; ++i) centroid = centroid + points[i];
     centroid = (1.0 / count) * centroid;

@@ -18,10 +18,11 @@ struct LocalFit {
     double rms;     // root mean square of the fit's residuals over the points fitted
 };
 
-// Fits z = c0 + c1 x + c2 y + c3 x^2 + c4 x y + c5 y^2 over `count` points (the point itself among them) in
-// the frame of their principal components centred at `point`, by least squares. Falls back to the plane of
-// the principal components when the points are too few or too degenerate for the quadric (fewer than 6, or
-// all on a curve). `count` is at least 1.
-LocalFit fit_local_quadric(Vec3 point, const Vec3* points, uint32_t count);
+// Fits z = c0 + c1 x + c2 y + c3 x^2 + c4 x y + c5 y^2 over `count` points given by their offsets from the
+// point fitted around (its own offset, zero, among them), in the frame of their principal components, by
+// least squares. Offsets, not positions: moving the cloud changes nothing in the fit. Falls back to the
+// plane of the principal components when the points are too few or too degenerate for the quadric (fewer
+// than 6, or all on a curve). `count` is at least 1.
+LocalFit fit_local_quadric(const Vec3* offsets, uint32_t count);
 
 } // namespace dbrg

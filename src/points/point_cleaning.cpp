@@ -55,6 +55,12 @@ constexpr double NOISE_LEVEL = 0.05;
 // (shape misfit under a quarter of the noise): the misfit is noise, not a coarse sample of a curved shape.
 constexpr double NOISE_SCALE_RATIO = 1.36;
 
+// ... and the points' distances from their local quadrics are spread like noise: the median over the mean is
+// 0.85 for a Gaussian (less after the fit's leverage; 0.76-0.79 measured on noisy scans, 0.88-0.91 with
+// misregistered views), 1 when every point is about as far as the others, as on two sheets closer than the
+// spacing (a thin plate sampled coarsely), which smoothing would fold into one.
+constexpr double NOISE_SPREAD_LIMIT = 0.95;
+
 // Projections onto the local quadric, each over the positions the last one gave (neighbourhoods fixed).
 constexpr uint32_t SMOOTHING_ITERATIONS = 3;
 
@@ -69,13 +75,14 @@ Vec3 point_of(const double* xyz, uint32_t i) { return load_vec3(xyz + 3 * size_t
 
 // The fit over point i and its kept neighbours among the first `wanted` of its list, at `xyz`.
 LocalFit fit_around(const double* xyz, uint32_t i, const uint32_t* list, uint32_t wanted, const uint8_t* flags) {
-    Vec3 points[WIDE_NEIGHBOURS + 1];
+    Vec3 offsets[WIDE_NEIGHBOURS + 1];
     uint32_t count = 0;
-    points[count++] = point_of(xyz, i);
+    const Vec3 point = point_of(xyz, i);
+    offsets[count++] = Vec3{0, 0, 0};
     for (uint32_t j = 0; j < wanted; ++j) {
-        if (flags[list[j]] == KEPT) points[count++] = point_of(xyz, list[j]);
+        if (flags[list[j]] == KEPT) offsets[count++] = point_of(xyz, list[j]) - point;
     }
-    return fit_local_quadric(points[0], points, count);
+    return fit_local_quadric(offsets, count);
 }
 
 class Cleaner {
@@ -163,8 +170,10 @@ private:
     // Fits at both scales around every NOISE_SAMPLE_STRIDE-th kept point.
     dbrg_status estimate_noise(const NeighbourIndex& index, const ProgressSpan& progress, bool& noisy) {
         const uint32_t samples = (n_ + NOISE_SAMPLE_STRIDE - 1) / NOISE_SAMPLE_STRIDE;
-        Array<double> narrow(context_.memory), wide(context_.memory);
-        if (!narrow.resize(samples, -1.0) || !wide.resize(samples, -1.0)) return context_.fail_out_of_memory();
+        Array<double> narrow(context_.memory), wide(context_.memory), offset(context_.memory);
+        if (!narrow.resize(samples, -1.0) || !wide.resize(samples, -1.0) || !offset.resize(samples, -1.0)) {
+            return context_.fail_out_of_memory();
+        }
         const double* xyz = points_.coordinates.data();
         const uint32_t parts = part_count(context_.params.threads, samples, MIN_POINTS_PER_THREAD / NOISE_SAMPLE_STRIDE);
         DBRG_PROPAGATE(progress.for_each_step(samples, parts, [&](size_t begin, size_t end) {
@@ -177,7 +186,9 @@ private:
                 for (uint32_t j = 0; j < NEIGHBOURS; ++j) mean_distance += distance(v, around[j]);
                 mean_distance /= NEIGHBOURS;
                 if (!(mean_distance > 0)) continue;
-                narrow[s] = fit_around(xyz, v, around, NEIGHBOURS, flags_.data()).rms / mean_distance;
+                const LocalFit fit = fit_around(xyz, v, around, NEIGHBOURS, flags_.data());
+                narrow[s] = fit.rms / mean_distance;
+                offset[s] = fabs(fit.height) / mean_distance;
                 wide[s] = fit_around(xyz, v, around, found, flags_.data()).rms / mean_distance;
             }
         }));
@@ -187,12 +198,18 @@ private:
             if (narrow[s] < 0) continue;
             narrow[kept] = narrow[s];
             wide[kept] = wide[s];
+            offset[kept] = offset[s];
             ++kept;
         }
         if (kept == 0) return DBRG_OK;
         const double level = median_of(narrow.data(), kept), wide_level = median_of(wide.data(), kept);
+        double mean_offset = 0;
+        for (size_t s = 0; s < kept; ++s) mean_offset += offset[s];
+        mean_offset /= double(kept);
+        const double median_offset = median_of(offset.data(), kept);
         context_.stats.noise_level = level;
-        noisy = level > NOISE_LEVEL && wide_level < NOISE_SCALE_RATIO * level;
+        noisy = level > NOISE_LEVEL && wide_level < NOISE_SCALE_RATIO * level &&
+                median_offset < NOISE_SPREAD_LIMIT * mean_offset;
         return DBRG_OK;
     }
 
