@@ -59,7 +59,7 @@ struct ProgressProbe {
 
     static int report(void* user, dbrg_stage stage, double fraction) {
         ProgressProbe& self = *static_cast<ProgressProbe*>(user);
-        FUZZ_CHECK(stage >= DBRG_STAGE_VALIDATE && stage <= DBRG_STAGE_OUTPUT);
+        FUZZ_CHECK(stage >= DBRG_STAGE_VALIDATE && stage <= DBRG_STAGE_CLEAN);
         FUZZ_CHECK(fraction >= 0.0 && fraction <= 1.0);
         FUZZ_CHECK_WHY(!self.cancelled, "the progress callback was called again after it cancelled");
         if (++self.calls == self.cancel_at) self.cancelled = true;

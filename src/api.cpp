@@ -14,10 +14,14 @@ using namespace dbrg;
 
 namespace {
 
-// The sizes of dbrg_params that released headers have: 0.1.0 ended before the snapshot fields.
+// The sizes of dbrg_params that released headers have: 0.1.0 ended before the snapshot fields, 0.2.0 and
+// 0.3.0 before the cleaning fields.
 const size_t PARAMS_V0_1_SIZE = offsetof(dbrg_params, snapshot);
+const size_t PARAMS_V0_2_SIZE = offsetof(dbrg_params, cleaning);
 
-bool known_params_size(size_t size) { return size == PARAMS_V0_1_SIZE || size == sizeof(dbrg_params); }
+bool known_params_size(size_t size) {
+    return size == PARAMS_V0_1_SIZE || size == PARAMS_V0_2_SIZE || size == sizeof(dbrg_params);
+}
 
 void write_message(char* message, size_t capacity, const char* text) {
     if (message && capacity > 0) snprintf(message, capacity, "%s", text);
@@ -154,8 +158,8 @@ DBRG_API dbrg_status dbrg_params_validate(const dbrg_params* params, char* messa
     if (!known_params_size(params->struct_size)) {
         char text[200];
         snprintf(text, sizeof text,
-                 "params->struct_size is %zu; this library (%s) knows sizes %zu and %zu: call dbrg_params_init first",
-                 params->struct_size, DBRG_VERSION_STRING, PARAMS_V0_1_SIZE, sizeof(dbrg_params));
+                 "params->struct_size is %zu; this library (%s) knows sizes %zu, %zu and %zu: call dbrg_params_init first",
+                 params->struct_size, DBRG_VERSION_STRING, PARAMS_V0_1_SIZE, PARAMS_V0_2_SIZE, sizeof(dbrg_params));
         write_message(message, capacity, text);
         return DBRG_ERR_INVALID_ARGUMENT;
     }
@@ -235,6 +239,16 @@ DBRG_API const uint32_t* dbrg_mesh_boundary_loop(const dbrg_mesh* mesh, uint32_t
     const uint32_t begin = mesh->surface.loop_offsets[loop];
     if (out_count) *out_count = mesh->surface.loop_offsets[loop + 1] - begin;
     return mesh->surface.loop_vertices.data() + begin;
+}
+
+DBRG_API const uint32_t* dbrg_mesh_outliers(const dbrg_mesh* mesh, uint32_t* out_count) {
+    const uint32_t count = mesh ? static_cast<uint32_t>(mesh->surface.outliers.size()) : 0;
+    if (out_count) *out_count = count;
+    return count > 0 ? mesh->surface.outliers.data() : nullptr;
+}
+
+DBRG_API const double* dbrg_mesh_smoothed_points(const dbrg_mesh* mesh) {
+    return mesh && !mesh->surface.smoothed_points.empty() ? mesh->surface.smoothed_points.data() : nullptr;
 }
 
 DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats) {

@@ -3,11 +3,15 @@
 // the caller's point indexing.
 #include "pipeline.h"
 
+#include <math.h>
+#include <string.h>
+
 #include "points/point_input.h"
 #include "core/progress_span.h"
 #include "core/status.h"
 #include "delaunay/backend.h"
 #include "delaunay/canonical_order.h"
+#include "points/point_cleaning.h"
 #include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
@@ -20,20 +24,47 @@
 namespace dbrg {
 namespace {
 
-// Reads, checks and conditions the caller's points; the raw copy is released before returning. Each step
-// reports its share of DBRG_STAGE_VALIDATE, the renumbering last, up to 1.
-dbrg_status prepare_points(const dbrg_points* points, Context& context, ConditionedPoints& conditioned) {
+// Reads, checks and conditions the caller's points; the raw copy is released before returning, copied into
+// `kept_copy` first when there is one. Each step reports its share of DBRG_STAGE_VALIDATE, the renumbering last, up to 1.
+dbrg_status prepare_points(const dbrg_points* points, Context& context, ConditionedPoints& conditioned,
+                           Array<double>* kept_copy = nullptr) {
     const double start = seconds_now();
     DBRG_PROPAGATE(context.report(DBRG_STAGE_VALIDATE, 0.0));
     Array<double> xyz(context.memory);
     DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
     DBRG_PROPAGATE(condition_points(xyz.data(), points->count, context, conditioned));
+    if (kept_copy) {
+        if (!kept_copy->resize(xyz.size())) return context.fail_out_of_memory();
+        memcpy(kept_copy->data(), xyz.data(), xyz.size() * sizeof(double));
+    }
     xyz.release();
     DBRG_PROPAGATE(renumber_spatially(conditioned, context));
     context.stats.input_points = static_cast<uint32_t>(points->count);
     context.stats.unique_points = conditioned.size();
     context.stats.duplicates_merged = conditioned.duplicates_merged;
     context.stats.seconds_validate = seconds_now() - start;
+    return DBRG_OK;
+}
+
+// Cleans the points unless the caller turned cleaning off. For output_smoothed, `result.smoothed_points`
+// holds the caller's points on entry; it is left with every point standing for a distinct point at its
+// smoothed position, in the caller's coordinates, or emptied when nothing was smoothed.
+dbrg_status clean(ConditionedPoints& conditioned, Context& context, SurfaceResult& result) {
+    if (context.params.cleaning == DBRG_CLEANING_OFF) return DBRG_OK;
+    const double start = seconds_now();
+    DBRG_PROPAGATE(clean_points(conditioned, context, result.outliers));
+    context.stats.unique_points = conditioned.size();
+    context.stats.seconds_clean = seconds_now() - start;
+    if (context.stats.points_smoothed == 0) {
+        result.smoothed_points.release();
+    } else if (!result.smoothed_points.empty()) {
+        for (uint32_t v = 0; v < conditioned.size(); ++v) {
+            for (int a = 0; a < 3; ++a) {
+                result.smoothed_points[3 * size_t(conditioned.input_index[v]) + a] =
+                    ldexp(conditioned.point(v)[a], -conditioned.scale_exponent) + conditioned.origin[a];
+            }
+        }
+    }
     return DBRG_OK;
 }
 
@@ -83,7 +114,9 @@ dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, Reg
 
 dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, SurfaceResult& result) {
     ConditionedPoints conditioned(context.memory);
-    DBRG_PROPAGATE(prepare_points(points, context, conditioned));
+    const bool keep_copy = context.params.output_smoothed && context.params.cleaning != DBRG_CLEANING_OFF;
+    DBRG_PROPAGATE(prepare_points(points, context, conditioned, keep_copy ? &result.smoothed_points : nullptr));
+    DBRG_PROPAGATE(clean(conditioned, context, result));
 
     Surface surface(context.memory);
     if (conditioned.flat) {

@@ -12,10 +12,13 @@
 namespace dbrg {
 
 struct SurfaceResult {
-    explicit SurfaceResult(Memory& memory) : triangles(memory), loop_offsets(memory), loop_vertices(memory) {}
+    explicit SurfaceResult(Memory& memory)
+        : triangles(memory), loop_offsets(memory), loop_vertices(memory), outliers(memory), smoothed_points(memory) {}
     Array<uint32_t> triangles;      // 3 per triangle, caller's indices
     Array<uint32_t> loop_offsets;   // loop i is loop_vertices[loop_offsets[i] .. loop_offsets[i + 1])
     Array<uint32_t> loop_vertices;  // caller's indices
+    Array<uint32_t> outliers;       // caller's indices, ascending
+    Array<double> smoothed_points;  // 3 per caller point when params.output_smoothed asked and points were smoothed
 };
 
 // Writes the live faces of S into `result`, those of closed components whose signed volume is negative

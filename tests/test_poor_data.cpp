@@ -2,6 +2,7 @@
 // data, the output is a valid oriented manifold; where the sampling allows, it is closed with the right genus.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -169,21 +170,122 @@ TEST_CASE("noise: jitter of a fraction of the spacing still gives a valid manifo
     }
 }
 
-TEST_CASE("outliers: a few stray points far from the surface do not break it") {
-    std::vector<double> xyz = samples::sample(samples::Shape::torus, 4000);
+TEST_CASE("outliers: a few stray points far from the surface are left out and listed, never joined as a spike") {
+    const size_t surface_points = 4000;
+    std::vector<double> xyz = samples::sample(samples::Shape::torus, surface_points);
+    const size_t n = xyz.size() / 3;
     SplitMix64 random(5);
     const auto box = [&random] { return 4 * random.uniform() - 2; };
     for (int i = 0; i < 20; ++i) {
         const double x = box(), y = box(), z = box();
         xyz.insert(xyz.end(), {x, y, z});
     }
+    dbrg_params params;
+    dbrg_params_init(&params);
+    for (dbrg_cleaning cleaning : {DBRG_CLEANING_AUTO, DBRG_CLEANING_OFF}) {
+        CAPTURE(int(cleaning));
+        params.cleaning = cleaning;
+        const test::Reconstruction result = test::reconstruct(xyz, &params);
+        REQUIRE(result.status == DBRG_OK);
+        const measure::MeshReport report = test::report_of(xyz, result.triangles);
+        test::require_valid_manifold(report);
+        MESSAGE("torus with 20 outliers, cleaning " << int(cleaning) << ": " << report.edges_boundary
+                                                    << " boundary edges, longest edge / median "
+                                                    << test::longest_edge(xyz, result.triangles) /
+                                                           test::median_edge(xyz, result.triangles));
+        CHECK(report.components == 1);
+        if (cleaning == DBRG_CLEANING_OFF) continue;
+        // Every stray point far from the torus (its tube has radius 0.35 about a circle of radius 1; the
+        // spacing is about 0.06) is listed as an outlier, and no triangle touches a listed point.
+        std::vector<uint32_t> far;
+        for (size_t i = n; i < xyz.size() / 3; ++i) {
+            const double ring = std::hypot(xyz[3 * i], xyz[3 * i + 1]) - 1.0;
+            if (std::fabs(std::hypot(ring, xyz[3 * i + 2]) - 0.35) > 0.5) far.push_back(uint32_t(i));
+        }
+        CHECK(far.size() >= 10);
+        dbrg_mesh* mesh = nullptr;
+        const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+        REQUIRE(dbrg_reconstruct(&points, &params, &mesh) == DBRG_OK);
+        uint32_t count = 0;
+        const uint32_t* outliers = dbrg_mesh_outliers(mesh, &count);
+        const std::vector<uint32_t> listed(outliers, outliers + count);
+        for (uint32_t i : far) CHECK(std::find(listed.begin(), listed.end(), i) != listed.end());
+        for (uint32_t i : listed) CHECK(i >= n);  // no torus point is called an outlier
+        CHECK(std::is_sorted(listed.begin(), listed.end()));
+        for (uint32_t corner : result.triangles) CHECK(std::find(listed.begin(), listed.end(), corner) == listed.end());
+        CHECK(result.stats.outliers == count);
+        // No spike: without cleaning the longest edge is 27 times the median, reaching a stray point.
+        CHECK(test::longest_edge(xyz, result.triangles) < 6 * test::median_edge(xyz, result.triangles));
+        dbrg_mesh_destroy(mesh);
+    }
+}
+
+TEST_CASE("near-duplicates: a sphere sampled twice, each copy 1e-9 off, comes out closed like the sphere") {
+    const std::vector<double> sphere = samples::sample(samples::Shape::sphere, 2000);
+    std::vector<double> xyz = sphere;
+    SplitMix64 random(3);
+    for (size_t i = 0; i < sphere.size(); ++i) xyz.push_back(sphere[i] + 1e-9 * (2 * random.uniform() - 1));
+    const size_t n = sphere.size() / 3;
     const test::Reconstruction result = test::reconstruct(xyz);
     REQUIRE(result.status == DBRG_OK);
     const measure::MeshReport report = test::report_of(xyz, result.triangles);
     test::require_valid_manifold(report);
-    MESSAGE("torus with 20 outliers: " << report.edges_boundary << " boundary edges, genus "
-                                       << (report.genus ? std::to_string(*report.genus) : "-"));
-    CHECK(report.components == 1);
+    CHECK(report.edges_boundary == 0);
+    REQUIRE(report.genus.has_value());
+    CHECK(*report.genus == 0);
+    CHECK(result.stats.near_duplicates_merged == n);
+    CHECK(result.stats.unique_points == n);
+    // Each pair is one vertex, by one of its two input indices, and nearly every pair is in the surface.
+    std::vector<int> used(n, 0);
+    for (uint32_t corner : result.triangles) used[corner % n] |= corner < n ? 1 : 2;
+    for (size_t i = 0; i < n; ++i) CHECK(used[i] != 3);
+    CHECK(result.stats.vertices_used > n * 99 / 100);
+}
+
+TEST_CASE("noise: a noisy torus is smoothed for growing and comes out closed; the output stays on the input") {
+    const std::vector<double> clean = samples::sample(samples::Shape::torus, 12000);
+    const std::vector<double> noisy = jittered(clean, 0.02, 11);  // about a third of the spacing (0.034)
+    dbrg_params params;
+    dbrg_params_init(&params);
+    for (dbrg_cleaning cleaning : {DBRG_CLEANING_OFF, DBRG_CLEANING_AUTO}) {
+        params.cleaning = cleaning;
+        const test::Reconstruction result = test::reconstruct(noisy, &params);
+        REQUIRE(result.status == DBRG_OK);
+        const measure::MeshReport report = test::report_of(noisy, result.triangles);
+        test::require_valid_manifold(report);
+        MESSAGE("noisy torus, cleaning " << int(cleaning) << ": " << report.edges_boundary << " boundary edges, chi "
+                                         << report.euler_characteristic << ", noise estimate "
+                                         << result.stats.noise_level);
+        if (cleaning == DBRG_CLEANING_OFF) {
+            CHECK(result.stats.points_smoothed == 0);
+            continue;
+        }
+        CHECK(result.stats.points_smoothed > 0);
+        CHECK(report.edges_boundary == 0);
+        REQUIRE(report.genus.has_value());
+        CHECK(*report.genus == 1);
+    }
+    // The smoothed positions, when asked for, lie nearer the torus than the noisy input.
+    params.output_smoothed = 1;
+    dbrg_mesh* mesh = nullptr;
+    const dbrg_points points{noisy.data(), noisy.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+    REQUIRE(dbrg_reconstruct(&points, &params, &mesh) == DBRG_OK);
+    const double* smoothed = dbrg_mesh_smoothed_points(mesh);
+    REQUIRE(smoothed != nullptr);
+    const auto off_torus = [](const double* p) {
+        return std::fabs(std::hypot(std::hypot(p[0], p[1]) - 1.0, p[2]) - 0.35);
+    };
+    double before = 0, after = 0;
+    for (size_t i = 0; i < noisy.size() / 3; ++i) {
+        before += off_torus(&noisy[3 * i]);
+        after += off_torus(smoothed + 3 * i);
+    }
+    CHECK(after < 0.5 * before);
+    dbrg_mesh_destroy(mesh);
+    params.output_smoothed = 0;
+    REQUIRE(dbrg_reconstruct(&points, &params, &mesh) == DBRG_OK);
+    CHECK(dbrg_mesh_smoothed_points(mesh) == nullptr);
+    dbrg_mesh_destroy(mesh);
 }
 
 TEST_CASE("a successful result that leaves most points out carries a warning, and only then") {

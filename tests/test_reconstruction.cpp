@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <utility>
@@ -453,11 +454,64 @@ TEST_CASE("validation and output report progress inside the stage, not only at i
             return r.first == stage && r.second > 0.0 && r.second < 1.0;
         }));
     }
-    // Stages in order, each one's fractions in order.
+    // Stages in the pipeline's order (cleaning, appended to the enum later, comes after validation), each
+    // one's fractions in order.
+    const auto rank = [](dbrg_stage stage) { return stage == DBRG_STAGE_CLEAN ? 0.5 : double(stage); };
     bool in_order = true;
     for (size_t i = 1; i < log.reports.size(); ++i) {
         const auto &a = log.reports[i - 1], &b = log.reports[i];
-        in_order = in_order && (b.first > a.first || (b.first == a.first && b.second >= a.second));
+        in_order = in_order && (rank(b.first) > rank(a.first) || (b.first == a.first && b.second >= a.second));
     }
     CHECK(in_order);
+    CHECK(std::any_of(log.reports.begin(), log.reports.end(),
+                      [](const std::pair<dbrg_stage, double>& r) { return r.first == DBRG_STAGE_CLEAN && r.second == 1.0; }));
+}
+
+// The cleaning stage is invisible on clean samples: the same triangles with it on (automatic) and off.
+void check_cleaning_changes_nothing(const std::vector<double>& xyz) {
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.cleaning = DBRG_CLEANING_OFF;
+    const test::Reconstruction off = test::reconstruct(xyz, &params);
+    params.cleaning = DBRG_CLEANING_AUTO;
+    const test::Reconstruction automatic = test::reconstruct(xyz, &params);
+    REQUIRE(off.status == DBRG_OK);
+    REQUIRE(automatic.status == DBRG_OK);
+    CHECK(automatic.stats.outliers == 0);
+    CHECK(automatic.stats.near_duplicates_merged == 0);
+    CHECK(automatic.stats.points_smoothed == 0);
+    CHECK(automatic.triangles == off.triangles);
+}
+
+TEST_CASE("cleaning changes nothing on the generated clean samples") {
+    using samples::Shape;
+    for (Shape shape : {Shape::sphere, Shape::torus, Shape::double_torus, Shape::bumpy_sphere, Shape::hemisphere,
+                        Shape::open_cylinder, Shape::saddle, Shape::cube, Shape::capped_cylinder, Shape::graded_sphere,
+                        Shape::thin_plate}) {
+        CAPTURE(samples::facts(shape).name);
+        // Coarse samples too: 1,200 points put the thin plate's two sides within one neighbourhood, which
+        // must not pass for noise.
+        for (size_t count : {size_t(20000), size_t(1200)}) {
+            CAPTURE(count);
+            check_cleaning_changes_nothing(samples::sample(shape, count));
+        }
+    }
+}
+
+TEST_CASE("cleaning changes nothing on the vertices of the shared data meshes" * doctest::test_suite(test::SHARED_DATA_SUITE)) {
+    const std::string dir = test::shared_data_dir_or_skip();
+    if (dir.empty()) return;
+    size_t meshes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const std::string extension = entry.path().extension().string();
+        if (extension != ".obj" && extension != ".off" && extension != ".ply") continue;
+        CAPTURE(entry.path().string());
+        io::MeshData mesh;
+        const io::IoStatus read = io::read_mesh(entry.path().string(), mesh);
+        INFO(read.message);
+        REQUIRE(read.ok);
+        check_cleaning_changes_nothing(mesh.positions);
+        ++meshes;
+    }
+    CHECK(meshes > 0);
 }

@@ -115,7 +115,9 @@ typedef enum dbrg_stage {
     DBRG_STAGE_GROW = 3,         /* region growing; the fraction follows the faces grown, then the
                                     removal of small islands and the edge flips */
     DBRG_STAGE_FILL_HOLES = 4,   /* recursive hole filling */
-    DBRG_STAGE_OUTPUT = 5        /* building the result */
+    DBRG_STAGE_OUTPUT = 5,       /* building the result */
+    DBRG_STAGE_CLEAN = 6         /* since 0.4.0: cleaning the points (outliers, near-duplicates, noise);
+                                    between DBRG_STAGE_VALIDATE and DBRG_STAGE_DELAUNAY */
 } dbrg_stage;
 
 /* Called from the computing thread with the current stage and its completed fraction in [0, 1].
@@ -161,6 +163,14 @@ typedef enum dbrg_boundary_mean {
     DBRG_BOUNDARY_MEAN_LOCAL = 0,  /* r_a over the triangles around the candidate's edge */
     DBRG_BOUNDARY_MEAN_GLOBAL = 1  /* r_a over all of S, as in the paper (section 4); the default */
 } dbrg_boundary_mean;
+
+/* Whether the points are cleaned before the tetrahedralization (since 0.4.0). */
+typedef enum dbrg_cleaning {
+    DBRG_CLEANING_AUTO = 0,  /* the default: each rule acts only where the data call for it (outliers,
+                                near-duplicates; smoothing when the points are found noisy) */
+    DBRG_CLEANING_OFF = 1,   /* the points go to the tetrahedralization as given (exact duplicates merged) */
+    DBRG_CLEANING_ON = 2     /* as AUTO, and the points are smoothed whatever the noise estimate says */
+} dbrg_cleaning;
 
 typedef struct dbrg_params {
     size_t struct_size;              /* sizeof(dbrg_params), set by dbrg_params_init */
@@ -212,6 +222,17 @@ typedef struct dbrg_params {
     uint32_t snapshot_count;
     /* Must be 0. Holds the place the compiler would pad, so that the struct's size tells its version. */
     uint32_t reserved;
+
+    /* Fields from version 0.4.0 on (an older caller's struct_size leaves them at their defaults). */
+
+    /* Cleaning the points before the tetrahedralization: outliers (points far sparser than the rest)
+     * left out, near-duplicates (points much closer than the local spacing) merged, noisy points moved
+     * onto a local surface estimate for growing. Default DBRG_CLEANING_AUTO. */
+    dbrg_cleaning cleaning;
+    /* Non-zero: dbrg_mesh_smoothed_points gives the positions the points were smoothed to (the surface
+     * then passes through those, not through the input). 0 (the default): the mesh is meant for the input
+     * positions, and dbrg_mesh_smoothed_points returns NULL. */
+    uint32_t output_smoothed;
 } dbrg_params;
 
 /* Fills the first `struct_size` bytes of `params` with the defaults (the paper's values where it gives
@@ -219,7 +240,7 @@ typedef struct dbrg_params {
  * with a newer header, this library's sizeof(dbrg_params). C and C++ callers use dbrg_params_init below;
  * bindings pass the size of their own copy of the struct.
  * Returns DBRG_ERR_INVALID_ARGUMENT when params is NULL or struct_size is neither the size of the struct
- * of a released version (0.1.0 or 0.2.0) nor larger than this one's. */
+ * of a released version (0.1.0, 0.2.0 (also 0.3.0's size) or this one) nor larger than this one's. */
 DBRG_API dbrg_status dbrg_params_init_sized(dbrg_params* params, size_t struct_size);
 
 /* Fills `params` with the defaults; inline so that the size is the one of the header the caller was
@@ -345,7 +366,29 @@ typedef struct dbrg_stats {
 
     uint32_t handles_removed;        /* small handles cut from closed components after hole filling (growing
                                         bridged two sheets closer than the sample spacing) */
+
+    /* Fields from version 0.4.0 on: the cleaning stage (all 0 when params.cleaning is DBRG_CLEANING_OFF). */
+    uint32_t outliers;               /* distinct points left out as outliers (dbrg_mesh_outliers lists them) */
+    uint32_t near_duplicates_merged; /* distinct points merged into a nearby point (much closer than the
+                                        local spacing); not counted in duplicates_merged */
+    uint32_t points_smoothed;        /* points moved onto a local surface estimate; 0 when not smoothed */
+    uint32_t smoothing_iterations;   /* projections each point went through; 0 when not smoothed */
+    double noise_level;              /* the noise estimate: median residual of a local quadric fit over the
+                                        mean distance to the neighbours (about 0.8 x noise / spacing) */
+    double seconds_clean;
 } dbrg_stats;
+
+/* Returns the indices of the input points left out as outliers, ascending, and writes their number to
+ * *out_count (since 0.4.0). An outlier stands for its exact duplicates too: the index given is the one
+ * that would have stood for them. No triangle uses an outlier.
+ * Returns NULL and writes 0 when mesh is NULL or there are none. out_count may be NULL. */
+DBRG_API const uint32_t* dbrg_mesh_outliers(const dbrg_mesh* mesh, uint32_t* out_count);
+
+/* Returns 3 * dbrg_mesh_point_count doubles (since 0.4.0): x, y, z of each input point as the surface
+ * has it: the smoothed position of each point that stands for a distinct point, the input position of the
+ * others (duplicates, outliers). NULL unless params->output_smoothed was set and the points were
+ * smoothed (dbrg_stats.points_smoothed > 0). mesh may be NULL (returns NULL). */
+DBRG_API const double* dbrg_mesh_smoothed_points(const dbrg_mesh* mesh);
 
 /* Copies the statistics of the call that made `mesh` into `stats`, up to stats->struct_size bytes,
  * and sets stats->struct_size to the number of bytes filled (smaller than the caller's when the

@@ -45,6 +45,11 @@ const char* const RECONSTRUCT_USAGE =
     "  --max-hole-edges N       holes with more boundary edges stay open (default 256)\n"
     "  --max-components N       surfaces grown from separate seeds, at most (default 64)\n"
     "  --backend builtin|tetgen the Delaunay tetrahedralization to use (default builtin)\n"
+    "  --cleaning auto|off|on   before the tetrahedralization, leave outliers out, merge near-duplicates\n"
+    "                           and, on noisy points, smooth them (auto, the default: each only where the\n"
+    "                           data call for it; on: smooth whatever the noise estimate says)\n"
+    "  --output-smoothed        write the smoothed positions of the points (default: the input's)\n"
+    "  --outliers FILE          write the indices of the points left out as outliers, one a line\n"
     "  --threads N              threads for the stages that split (0: all, default; 1: none);\n"
     "                           the mesh is the same for any N\n"
     "  --no-normals             write no vertex normals\n"
@@ -99,6 +104,12 @@ bool read_params(const ParsedArgs& args, dbrg_params& params, std::string& error
         if (backend != "builtin" && backend != "tetgen") return error = "--backend takes builtin or tetgen", false;
         params.backend = backend == "builtin" ? DBRG_BACKEND_BUILTIN : DBRG_BACKEND_TETGEN;
     }
+    if (args.has("--cleaning")) {
+        const std::string cleaning = args.value("--cleaning");
+        if (cleaning != "auto" && cleaning != "off" && cleaning != "on") return error = "--cleaning takes auto, off or on", false;
+        params.cleaning = cleaning == "auto" ? DBRG_CLEANING_AUTO : cleaning == "off" ? DBRG_CLEANING_OFF : DBRG_CLEANING_ON;
+    }
+    if (args.has("--output-smoothed")) params.output_smoothed = 1;
     char message[256];
     if (dbrg_params_validate(&params, message, sizeof message) != DBRG_OK) return error = message, false;
     return true;
@@ -174,12 +185,18 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_unsigned("hole_triangles_added", s.hole_triangles_added)
         .add_unsigned("hole_triangles_removed", s.hole_triangles_removed)
         .add_unsigned("handles_removed", s.handles_removed)
+        .add_unsigned("outliers", s.outliers)
+        .add_unsigned("near_duplicates_merged", s.near_duplicates_merged)
+        .add_unsigned("points_smoothed", s.points_smoothed)
+        .add_unsigned("smoothing_iterations", s.smoothing_iterations)
+        .add_number("noise_level", s.noise_level)
         .add_unsigned("predicate_calls", s.predicate_calls)
         .add_unsigned("predicate_filter_failures", s.predicate_filter_failures)
         .add_unsigned("predicate_perturbations", s.predicate_perturbations)
         .add_number("seconds_read", seconds_read)
         .add_number("seconds_validate", s.seconds_validate)
         .add_number("seconds_sort", s.seconds_sort)
+        .add_number("seconds_clean", s.seconds_clean)
         .add_number("seconds_delaunay", s.seconds_delaunay)
         .add_number("seconds_growing", s.seconds_grow)
         .add_number("seconds_fill_holes", s.seconds_fill_holes)
@@ -201,6 +218,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--max-components", nullptr, true}, {"--backend", nullptr, true},       {"--stats-json", nullptr, true},
         {"--threads", nullptr, true},      {"--snapshots", nullptr, true},       {"--quiet", "-q", false},
         {"--no-normals", nullptr, false},  {"--drop-unused", nullptr, false},
+        {"--cleaning", nullptr, true},     {"--output-smoothed", nullptr, false}, {"--outliers", nullptr, true},
     };
     ParsedArgs args;
     std::string error;
@@ -231,7 +249,7 @@ int run_reconstruct(int argc, char** argv) {
     }
     io::MeshData mesh;
     SnapshotFiles snapshots{&mesh, output, 0, {}};
-    std::vector<std::string> outputs = {output, args.value("--stats-json")};
+    std::vector<std::string> outputs = {output, args.value("--stats-json"), args.value("--outliers")};
     for (uint32_t k = 1; k <= params.snapshot_count; ++k) outputs.push_back(snapshots.path(k));
     const std::string input = args.has("--demo") ? "" : args.positional[0];
     if (!check_outputs(outputs, input, error)) return report_error(EXIT_FAILED, "reconstruct: " + error);
@@ -270,6 +288,9 @@ int run_reconstruct(int argc, char** argv) {
     const uint32_t* triangles = dbrg_mesh_triangles(result);
     mesh.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(result)));
     mesh.has_faces = true;
+    if (const double* smoothed = dbrg_mesh_smoothed_points(result)) {
+        mesh.positions.assign(smoothed, smoothed + mesh.positions.size());
+    }
     const bool format_has_normals = *format == io::MeshFormat::ply_binary || *format == io::MeshFormat::obj;
     if (format_has_normals && !args.has("--no-normals")) mesh.normals = io::vertex_normals(mesh.positions, mesh.triangles);
     if (args.has("--drop-unused")) io::drop_unused_vertices(mesh);
@@ -284,6 +305,13 @@ int run_reconstruct(int argc, char** argv) {
     if (args.has("--stats-json")) {
         summary_ok = write_text_output(args.value("--stats-json"), stats_json(stats, result, seconds_read, seconds_write),
                                        summary_error);
+    }
+    if (summary_ok && args.has("--outliers")) {
+        uint32_t count = 0;
+        const uint32_t* outliers = dbrg_mesh_outliers(result, &count);
+        std::string lines;
+        for (uint32_t i = 0; i < count; ++i) lines += std::to_string(outliers[i]) + "\n";
+        summary_ok = write_text_output(args.value("--outliers"), lines, summary_error);
     }
     // On success the library's message is empty or a warning (e.g. most points left out of the surface).
     if (*dbrg_mesh_message(result)) std::fprintf(stderr, "dbrg: %s\n", dbrg_mesh_message(result));

@@ -16,6 +16,7 @@ const char* stage_name(dbrg_stage stage) {
     case DBRG_STAGE_GROW: return "growing";
     case DBRG_STAGE_FILL_HOLES: return "filling holes";
     case DBRG_STAGE_OUTPUT: return "output";
+    case DBRG_STAGE_CLEAN: return "cleaning";
     }
     return "working";
 }

@@ -43,6 +43,10 @@ const char* find_parameter_problem(const dbrg_params& params) {
                                                           params.allocator->deallocate);
     if (!allocator_complete) return "allocator must provide allocate, reallocate and deallocate (or be NULL)";
     if (params.reserved != 0) return "reserved must be 0";
+    const int cleaning = c_enum_value(params.cleaning);
+    if (cleaning != DBRG_CLEANING_AUTO && cleaning != DBRG_CLEANING_OFF && cleaning != DBRG_CLEANING_ON) {
+        return "cleaning must be DBRG_CLEANING_AUTO, DBRG_CLEANING_OFF or DBRG_CLEANING_ON";
+    }
     return nullptr;
 }
 

@@ -114,7 +114,8 @@ const double ROUNDING_SPREAD = 1e-9;
 
 namespace {
 
-dbrg_status condition(const double* xyz, size_t count, Context& context, ConditionedPoints& out) {
+dbrg_status condition(const double* xyz, size_t count, const ProgressSpan& progress, ConditionedPoints& out) {
+    Context& context = progress.context();
     out.coordinates.clear();
     out.input_index.clear();
     out.duplicates_merged = 0;
@@ -124,7 +125,6 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
     DBRG_PROPAGATE(check_point_count(count, context));
 
     // Each pass has a share of the progress roughly as its time on a large input.
-    const ProgressSpan progress(context, DBRG_STAGE_VALIDATE, VALIDATE_READ_SHARE, VALIDATE_CONDITION_END);
     double lo[3], hi[3];
     DBRG_PROPAGATE(bounding_box(xyz, count, progress.part(0.0, 0.05), lo, hi));
     // The extent may overflow to infinity (coordinates near +-DBL_MAX); measure half of it then.
@@ -221,7 +221,12 @@ dbrg_status condition(const double* xyz, size_t count, Context& context, Conditi
 } // namespace
 
 dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out) {
-    const dbrg_status status = condition(xyz, count, context, out);
+    return condition_points(xyz, count, ProgressSpan(context, DBRG_STAGE_VALIDATE, VALIDATE_READ_SHARE, VALIDATE_CONDITION_END),
+                            out);
+}
+
+dbrg_status condition_points(const double* xyz, size_t count, const ProgressSpan& progress, ConditionedPoints& out) {
+    const dbrg_status status = condition(xyz, count, progress, out);
     if (status != DBRG_OK) {
         out.coordinates.release();  // a failed call leaves nothing behind
         out.input_index.release();
@@ -236,7 +241,11 @@ dbrg_status refuse_flat(const ConditionedPoints& points, size_t count, Context& 
 }
 
 dbrg_status renumber_spatially(ConditionedPoints& points, Context& context) {
-    const ProgressSpan progress(context, DBRG_STAGE_VALIDATE, VALIDATE_CONDITION_END, 1.0);
+    return renumber_spatially(points, ProgressSpan(context, DBRG_STAGE_VALIDATE, VALIDATE_CONDITION_END, 1.0));
+}
+
+dbrg_status renumber_spatially(ConditionedPoints& points, const ProgressSpan& progress) {
+    Context& context = progress.context();
     const uint32_t n = points.size();
     Array<uint32_t> order(context.memory);
     Array<double> coordinates(context.memory);

@@ -7,6 +7,7 @@
 
 #include "core/array.h"
 #include "core/context.h"
+#include "core/progress_span.h"
 #include "points/spatial_sort.h"
 
 namespace dbrg {
@@ -49,6 +50,8 @@ constexpr double VALIDATE_CONDITION_END = 0.8;
 // or DBRG_ERR_CANCELLED; `out` is then left empty. Reports DBRG_STAGE_VALIDATE progress from
 // VALIDATE_READ_SHARE to VALIDATE_CONDITION_END.
 dbrg_status condition_points(const double* xyz, size_t count, Context& context, ConditionedPoints& out);
+// The same, reporting to `progress` (the cleaning stage conditions the points it keeps again).
+dbrg_status condition_points(const double* xyz, size_t count, const ProgressSpan& progress, ConditionedPoints& out);
 
 // Where a volume is needed (tetrahedra): DBRG_ERR_DEGENERATE_INPUT, with a message saying how many of the
 // `count` points given were distinct, when `points` are flat; DBRG_OK otherwise.
@@ -60,5 +63,6 @@ dbrg_status refuse_flat(const ConditionedPoints& points, size_t count, Context& 
 // not depend on the caller's order. Reports DBRG_STAGE_VALIDATE progress from VALIDATE_CONDITION_END to 1.
 // Returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED (with the message set).
 dbrg_status renumber_spatially(ConditionedPoints& points, Context& context);
+dbrg_status renumber_spatially(ConditionedPoints& points, const ProgressSpan& progress);
 
 } // namespace dbrg

@@ -46,6 +46,9 @@ _BACKENDS = {"builtin": _capi.ENUMS["dbrg_backend"]["DBRG_BACKEND_BUILTIN"],
              "tetgen": _capi.ENUMS["dbrg_backend"]["DBRG_BACKEND_TETGEN"]}
 _BOUNDARY_MEANS = {"local": _capi.ENUMS["dbrg_boundary_mean"]["DBRG_BOUNDARY_MEAN_LOCAL"],
                    "global": _capi.ENUMS["dbrg_boundary_mean"]["DBRG_BOUNDARY_MEAN_GLOBAL"]}
+_CLEANING = {"auto": _capi.ENUMS["dbrg_cleaning"]["DBRG_CLEANING_AUTO"],
+             "off": _capi.ENUMS["dbrg_cleaning"]["DBRG_CLEANING_OFF"],
+             "on": _capi.ENUMS["dbrg_cleaning"]["DBRG_CLEANING_ON"]}
 _OK = _capi.ENUMS["dbrg_status"]["DBRG_OK"]
 _UINT32_MAX = 0xFFFFFFFF
 
@@ -185,7 +188,8 @@ def _choice(name, value, choices):
 
 
 def _params(lib, sliver_angle=None, boundary_factor=None, boundary_mean=None, fill_holes=True,
-            max_hole_edges=None, max_components=None, backend=None, threads=None):
+            max_hole_edges=None, max_components=None, backend=None, threads=None, cleaning=None,
+            output_smoothed=False):
     """A dbrg_params with the library's defaults, overridden by every argument that is not None.
     Range checks are the library's (dbrg_params_validate)."""
     params = _capi.dbrg_params()
@@ -206,6 +210,9 @@ def _params(lib, sliver_angle=None, boundary_factor=None, boundary_mean=None, fi
         params.backend = _choice("backend", backend, _BACKENDS)
     if threads is not None:
         params.threads = _count("threads", threads)
+    if cleaning is not None:
+        params.cleaning = _choice("cleaning", cleaning, _CLEANING)
+    params.output_smoothed = 1 if output_smoothed else 0
     return params
 
 
@@ -296,7 +303,8 @@ class Mesh:
     """The result of reconstruct(); everything is copied out of the library, so it lives on its own.
 
     vertices       (N, 3) copy of the input points (float32 or float64 as given), which the triangles
-                   index; points left out of the surface are among them, used by no triangle.
+                   index, or smoothed_points when output_smoothed was asked and the points were smoothed;
+                   points left out of the surface are among them, used by no triangle.
     vertex_normals (N, 3) float32 unit normals, each the angle-weighted mean of its triangles' normals,
                    outward on closed surfaces; (0, 0, 0) where no triangle uses the vertex. Computed
                    on first use by libdbrg_io, as the dbrg program writes them.
@@ -311,17 +319,24 @@ class Mesh:
     point_count    the number of input points the indices refer to.
     warning        "" or the library's warning about a result that leaves most points out (also
                    issued as a RuntimeWarning by reconstruct()).
+    outliers       uint32 array: the input points left out as outliers, ascending.
+    smoothed_points (N, 3) float64 positions the points were smoothed to (input positions for duplicates
+                   and outliers), or None unless output_smoothed was asked and the points were smoothed.
     """
 
-    __slots__ = ("vertices", "triangles", "boundary_loops", "stats", "point_count", "warning", "_vertex_normals")
+    __slots__ = ("vertices", "triangles", "boundary_loops", "stats", "point_count", "warning", "outliers",
+                 "smoothed_points", "_vertex_normals")
 
-    def __init__(self, vertices, triangles, boundary_loops, stats, point_count, warning=""):
+    def __init__(self, vertices, triangles, boundary_loops, stats, point_count, warning="", outliers=None,
+                 smoothed_points=None):
         self.vertices = vertices
         self.triangles = triangles
         self.boundary_loops = boundary_loops
         self.stats = stats
         self.point_count = point_count
         self.warning = warning
+        self.outliers = np.empty(0, dtype=np.uint32) if outliers is None else outliers
+        self.smoothed_points = smoothed_points
         self._vertex_normals = None
 
     def _arrays(self):
@@ -397,7 +412,14 @@ def _mesh(lib, handle, points):
         pointer = lib.dbrg_mesh_boundary_loop(handle, loop, ctypes.byref(length))
         loops.append(_copy_u32(pointer, length.value))
     warning = lib.dbrg_mesh_message(handle).decode("utf-8", "replace")
-    return Mesh(np.array(points), triangles, loops, _stats_dict(lib, handle), lib.dbrg_mesh_point_count(handle), warning)
+    outlier_count = ctypes.c_uint32()
+    outliers = _copy_u32(lib.dbrg_mesh_outliers(handle, ctypes.byref(outlier_count)), outlier_count.value)
+    point_count = lib.dbrg_mesh_point_count(handle)
+    smoothed = lib.dbrg_mesh_smoothed_points(handle)
+    smoothed_points = np.ctypeslib.as_array(smoothed, shape=(point_count, 3)).copy() if smoothed else None
+    # The mesh's vertices are where its surface passes: the smoothed positions when they were asked for.
+    vertices = np.array(points) if smoothed_points is None else smoothed_points
+    return Mesh(vertices, triangles, loops, _stats_dict(lib, handle), point_count, warning, outliers, smoothed_points)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -405,7 +427,8 @@ def _mesh(lib, handle, points):
 # ---------------------------------------------------------------------------------------------------
 
 def reconstruct(points, *, sliver_angle=None, boundary_factor=None, boundary_mean=None, fill_holes=True,
-                max_hole_edges=None, max_components=None, backend=None, threads=None, progress=None):
+                max_hole_edges=None, max_components=None, backend=None, threads=None, progress=None,
+                cleaning=None, output_smoothed=False):
     """Reconstructs an oriented manifold triangle mesh through `points` and returns a Mesh.
 
     points: any (N, 3) array-like of numbers; float32 and float64 arrays are read in place when each
@@ -424,6 +447,9 @@ def reconstruct(points, *, sliver_angle=None, boundary_factor=None, boundary_mea
     progress: None, or progress(stage_name, fraction) called on the calling thread; returning False
         cancels (CancelledError), and an exception raised inside it cancels the computation and is
         raised again from here. Ctrl-C (KeyboardInterrupt) cancels at the next progress report too.
+    cleaning: "auto" (the library's default: outliers left out, near-duplicates merged, noisy points
+        smoothed for growing, each only where the data call for it), "off", or "on" (always smooth).
+    output_smoothed: also return the smoothed positions (Mesh.smoothed_points).
     None keeps the library's default for every parameter.
 
     Raises a dbrg.Error subclass naming the status and the problem (NonFiniteInputError for a NaN,
@@ -432,7 +458,7 @@ def reconstruct(points, *, sliver_angle=None, boundary_factor=None, boundary_mea
     lib = library()
     array, view = _point_array(points)
     params = _params(lib, sliver_angle, boundary_factor, boundary_mean, fill_holes, max_hole_edges,
-                     max_components, backend, threads)
+                     max_components, backend, threads, cleaning, output_smoothed)
     watcher = _attach_progress(params, progress)
     handle = _capi.mesh_p()
     with watcher:

@@ -43,6 +43,7 @@ ENUMS = {
         "DBRG_STAGE_GROW": 3,
         "DBRG_STAGE_FILL_HOLES": 4,
         "DBRG_STAGE_OUTPUT": 5,
+        "DBRG_STAGE_CLEAN": 6,
     },
     "dbrg_scalar_type": {
         "DBRG_FLOAT32": 0,
@@ -55,6 +56,11 @@ ENUMS = {
     "dbrg_boundary_mean": {
         "DBRG_BOUNDARY_MEAN_LOCAL": 0,
         "DBRG_BOUNDARY_MEAN_GLOBAL": 1,
+    },
+    "dbrg_cleaning": {
+        "DBRG_CLEANING_AUTO": 0,
+        "DBRG_CLEANING_OFF": 1,
+        "DBRG_CLEANING_ON": 2,
     },
 }
 
@@ -105,6 +111,8 @@ class dbrg_params(ctypes.Structure):
         ("snapshot_user", c_void_p),
         ("snapshot_count", c_uint32),
         ("reserved", c_uint32),
+        ("cleaning", c_enum),
+        ("output_smoothed", c_uint32),
     ]
 
 
@@ -145,6 +153,12 @@ class dbrg_stats(ctypes.Structure):
         ("seconds_total", c_double),
         ("peak_bytes", c_size_t),
         ("handles_removed", c_uint32),
+        ("outliers", c_uint32),
+        ("near_duplicates_merged", c_uint32),
+        ("points_smoothed", c_uint32),
+        ("smoothing_iterations", c_uint32),
+        ("noise_level", c_double),
+        ("seconds_clean", c_double),
     ]
 
 
@@ -178,6 +192,8 @@ FUNCTIONS = {
     "dbrg_mesh_triangles": (u32_p, [mesh_p]),
     "dbrg_mesh_boundary_loop_count": (c_uint32, [mesh_p]),
     "dbrg_mesh_boundary_loop": (u32_p, [mesh_p, c_uint32, u32_p]),
+    "dbrg_mesh_outliers": (u32_p, [mesh_p, u32_p]),
+    "dbrg_mesh_smoothed_points": (POINTER(c_double), [mesh_p]),
     "dbrg_mesh_stats": (c_enum, [mesh_p, POINTER(dbrg_stats)]),
     "dbrg_tetrahedralize": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_params), POINTER(tets_p)]),
     "dbrg_tetrahedralization_destroy": (None, [tets_p]),

@@ -169,6 +169,18 @@ pub enum BoundaryMean {
     Global,
 }
 
+/// Whether the points are cleaned before the tetrahedralization.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Cleaning {
+    /// The default: outliers left out, near-duplicates merged, noisy points smoothed for growing, each
+    /// only where the data call for it.
+    Auto,
+    /// The points go to the tetrahedralization as given (exact duplicates merged).
+    Off,
+    /// As `Auto`, and the points are smoothed whatever the noise estimate says.
+    On,
+}
+
 /// Reconstruction parameters; `Params::default()` takes the library's defaults (`dbrg_params_init_sized`,
 /// the paper's values where it gives one). Change fields after creating it:
 ///
@@ -200,6 +212,10 @@ pub struct Params {
     /// Threads for the stages that split into parts; 1 runs on the calling thread only, 0 (the
     /// default) uses every hardware thread. The result is the same for any value.
     pub threads: u32,
+    /// The point-cleaning stage.
+    pub cleaning: Cleaning,
+    /// Keep the smoothed positions for [`Mesh::smoothed_points`].
+    pub output_smoothed: bool,
 }
 
 impl Default for Params {
@@ -218,6 +234,12 @@ impl Default for Params {
             max_components: raw.max_components,
             backend: if raw.backend == sys::DBRG_BACKEND_TETGEN { Backend::Tetgen } else { Backend::Builtin },
             threads: raw.threads,
+            cleaning: match raw.cleaning {
+                sys::DBRG_CLEANING_OFF => Cleaning::Off,
+                sys::DBRG_CLEANING_ON => Cleaning::On,
+                _ => Cleaning::Auto,
+            },
+            output_smoothed: raw.output_smoothed != 0,
         }
     }
 }
@@ -240,6 +262,8 @@ fn default_raw_params() -> sys::dbrg_params {
         snapshot_user: ptr::null_mut(),
         snapshot_count: 0,
         reserved: 0,
+        cleaning: 0,
+        output_smoothed: 0,
     };
     // SAFETY: raw is a valid dbrg_params to write.
     let status = unsafe { sys::dbrg_params_init_sized(&mut raw, std::mem::size_of::<sys::dbrg_params>()) };
@@ -265,6 +289,12 @@ impl Params {
             Backend::Tetgen => sys::DBRG_BACKEND_TETGEN,
         };
         raw.threads = self.threads;
+        raw.cleaning = match self.cleaning {
+            Cleaning::Auto => sys::DBRG_CLEANING_AUTO,
+            Cleaning::Off => sys::DBRG_CLEANING_OFF,
+            Cleaning::On => sys::DBRG_CLEANING_ON,
+        };
+        raw.output_smoothed = self.output_smoothed as u32;
         raw
     }
 }
@@ -399,6 +429,8 @@ pub enum Stage {
     FillHoles,
     /// Building the result.
     Output,
+    /// Cleaning the points (outliers, near-duplicates, noise), between `Validate` and `Delaunay`.
+    Clean,
     /// A stage this binding does not know (from a newer library).
     Other(u32),
 }
@@ -412,6 +444,7 @@ impl Stage {
             sys::DBRG_STAGE_GROW => Stage::Grow,
             sys::DBRG_STAGE_FILL_HOLES => Stage::FillHoles,
             sys::DBRG_STAGE_OUTPUT => Stage::Output,
+            sys::DBRG_STAGE_CLEAN => Stage::Clean,
             other => Stage::Other(other),
         }
     }
@@ -540,6 +573,32 @@ impl Mesh {
             None
         } else {
             Some(message)
+        }
+    }
+
+    /// The input points left out as outliers, ascending.
+    pub fn outliers(&self) -> &[u32] {
+        let mut count = 0u32;
+        unsafe {
+            let data = sys::dbrg_mesh_outliers(self.raw.as_ptr(), &mut count);
+            if data.is_null() {
+                &[]
+            } else {
+                slice::from_raw_parts(data, count as usize)
+            }
+        }
+    }
+
+    /// x, y, z of every input point as smoothed (input positions for duplicates and outliers), or `None`
+    /// unless [`Params::output_smoothed`] was set and the points were smoothed.
+    pub fn smoothed_points(&self) -> Option<&[[f64; 3]]> {
+        unsafe {
+            let data = sys::dbrg_mesh_smoothed_points(self.raw.as_ptr());
+            if data.is_null() {
+                None
+            } else {
+                Some(slice::from_raw_parts(data as *const [f64; 3], self.point_count() as usize))
+            }
         }
     }
 

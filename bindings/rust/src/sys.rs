@@ -37,10 +37,16 @@ pub const DBRG_STAGE_DELAUNAY: dbrg_stage = 2;
 pub const DBRG_STAGE_GROW: dbrg_stage = 3;
 pub const DBRG_STAGE_FILL_HOLES: dbrg_stage = 4;
 pub const DBRG_STAGE_OUTPUT: dbrg_stage = 5;
+pub const DBRG_STAGE_CLEAN: dbrg_stage = 6;
 
 pub type dbrg_scalar_type = c_uint;
 pub const DBRG_FLOAT32: dbrg_scalar_type = 0;
 pub const DBRG_FLOAT64: dbrg_scalar_type = 1;
+
+pub type dbrg_cleaning = c_uint;
+pub const DBRG_CLEANING_AUTO: dbrg_cleaning = 0;
+pub const DBRG_CLEANING_OFF: dbrg_cleaning = 1;
+pub const DBRG_CLEANING_ON: dbrg_cleaning = 2;
 
 pub type dbrg_backend = c_uint;
 pub const DBRG_BACKEND_BUILTIN: dbrg_backend = 0;
@@ -94,6 +100,8 @@ pub struct dbrg_params {
     pub snapshot_user: *mut c_void,
     pub snapshot_count: u32,
     pub reserved: u32,
+    pub cleaning: dbrg_cleaning,
+    pub output_smoothed: u32,
 }
 
 #[repr(C)]
@@ -134,6 +142,12 @@ pub struct dbrg_stats {
     pub seconds_total: f64,
     pub peak_bytes: usize,
     pub handles_removed: u32,
+    pub outliers: u32,
+    pub near_duplicates_merged: u32,
+    pub points_smoothed: u32,
+    pub smoothing_iterations: u32,
+    pub noise_level: f64,
+    pub seconds_clean: f64,
 }
 
 /// Opaque result of `dbrg_reconstruct`.
@@ -171,6 +185,8 @@ extern "C" {
     pub fn dbrg_mesh_triangles(mesh: *const dbrg_mesh) -> *const u32;
     pub fn dbrg_mesh_boundary_loop_count(mesh: *const dbrg_mesh) -> u32;
     pub fn dbrg_mesh_boundary_loop(mesh: *const dbrg_mesh, loop_: u32, out_count: *mut u32) -> *const u32;
+    pub fn dbrg_mesh_outliers(mesh: *const dbrg_mesh, out_count: *mut u32) -> *const u32;
+    pub fn dbrg_mesh_smoothed_points(mesh: *const dbrg_mesh) -> *const f64;
     pub fn dbrg_mesh_stats(mesh: *const dbrg_mesh, stats: *mut dbrg_stats) -> dbrg_status;
 
     pub fn dbrg_tetrahedralize(

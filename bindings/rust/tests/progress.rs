@@ -6,7 +6,8 @@ use common::fibonacci_sphere;
 use dbrg::{Params, Stage, Status};
 use std::panic::{self, AssertUnwindSafe};
 
-const ORDER: [Stage; 6] = [Stage::Validate, Stage::Sort, Stage::Delaunay, Stage::Grow, Stage::FillHoles, Stage::Output];
+const ORDER: [Stage; 7] =
+    [Stage::Validate, Stage::Clean, Stage::Sort, Stage::Delaunay, Stage::Grow, Stage::FillHoles, Stage::Output];
 
 #[test]
 fn stages_arrive_in_pipeline_order() {

@@ -1,0 +1,201 @@
+// Neighbour search: a k-d tree split at the median of each node's widest axis, every leaf at one depth,
+// searched nearest child first with a bounded candidate list.
+//
+// Based on: J. H. Friedman, J. L. Bentley, R. A. Finkel, "An algorithm for finding best matches in
+// logarithmic expected time" (ACM TOMS 3(3), 1977).
+#include "points/neighbour_search.h"
+
+#include <algorithm>
+
+#include "core/parallel.h"
+#include "core/status.h"
+
+namespace dbrg {
+namespace {
+
+// Points per leaf at most: a leaf's points are compared with the query one after another, which is cheaper
+// than descending further for a handful of points.
+constexpr uint32_t LEAF_POINTS = 8;
+
+double squared_distance(const double* a, const double* b) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
+template <class Box>
+double squared_distance_to_box(const double* p, const Box& box) {
+    double sum = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double below = box.lo[a] - p[a], above = p[a] - box.hi[a];
+        const double d = below > 0 ? below : above > 0 ? above : 0.0;
+        sum += d * d;
+    }
+    return sum;
+}
+
+template <class Box>
+Box box_of(const double* xyz, const uint32_t* indices, size_t n) {
+    Box box;
+    for (int a = 0; a < 3; ++a) box.lo[a] = box.hi[a] = xyz[3 * size_t(indices[0]) + a];
+    for (size_t i = 1; i < n; ++i) {
+        const double* p = xyz + 3 * size_t(indices[i]);
+        for (int a = 0; a < 3; ++a) {
+            box.lo[a] = std::min(box.lo[a], p[a]);
+            box.hi[a] = std::max(box.hi[a], p[a]);
+        }
+    }
+    return box;
+}
+
+// The k nearest found so far, nearest first.
+struct Candidates {
+    uint32_t k = 0, size = 0;
+    double distance[MAX_NEIGHBOURS];
+    uint32_t index[MAX_NEIGHBOURS];
+
+    bool full() const { return size == k; }
+    double worst() const { return distance[size - 1]; }
+
+    void offer(double d, uint32_t i) {
+        if (full() && !(d < worst() || (d == worst() && i < index[size - 1]))) return;
+        uint32_t at = full() ? size - 1 : size++;
+        while (at > 0 && (distance[at - 1] > d || (distance[at - 1] == d && index[at - 1] > i))) {
+            distance[at] = distance[at - 1];
+            index[at] = index[at - 1];
+            --at;
+        }
+        distance[at] = d;
+        index[at] = i;
+    }
+};
+
+} // namespace
+
+size_t NeighbourIndex::range_begin(uint32_t node, int level) const {
+    return part_begin(count_, 1u << level, node - (1u << level));
+}
+
+// Splits every node of one level at the median of its widest axis (ties by index, so the split depends on
+// the coordinates and the numbering only).
+void NeighbourIndex::split_level(int level, uint32_t parts) {
+    const uint32_t nodes = 1u << level;
+    const double* xyz = xyz_;
+    for_each_slice(nodes, parts, [&](size_t first, size_t last) {
+        for (size_t position = first; position < last; ++position) {
+            const uint32_t node = nodes + static_cast<uint32_t>(position);
+            const size_t begin = range_begin(node, level), end = range_begin(node + 1, level);
+            if (end - begin < 2) continue;
+            uint32_t* indices = order_.data();
+            const Box box = box_of<Box>(xyz, indices + begin, end - begin);
+            int axis = 0;
+            for (int a = 1; a < 3; ++a) {
+                if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
+            }
+            const size_t middle = range_begin(2 * node + 1, level + 1);
+            std::nth_element(indices + begin, indices + middle, indices + end, [xyz, axis](uint32_t a, uint32_t b) {
+                const double u = xyz[3 * size_t(a) + axis], v = xyz[3 * size_t(b) + axis];
+                return u < v || (u == v && a < b);
+            });
+        }
+    });
+}
+
+dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const ProgressSpan& progress) {
+    Context& context = progress.context();
+    xyz_ = xyz;
+    count_ = count;
+    depth_ = 0;
+    while ((size_t(count) + (size_t(1) << depth_) - 1) >> depth_ > LEAF_POINTS) ++depth_;
+    if (!order_.resize(count) || !boxes_.resize(size_t(2) << depth_)) return context.fail_out_of_memory();
+    for (uint32_t i = 0; i < count; ++i) order_[i] = i;
+    if (count == 0) return progress.report(1, 1);
+    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
+    for (int level = 0; level < depth_; ++level) {
+        DBRG_PROPAGATE(progress.report(size_t(level), size_t(depth_) + 1));
+        split_level(level, parts);
+    }
+    // Boxes bottom-up: a leaf's from its points, a node's from its children's. No leaf is empty: the depth is
+    // the smallest with at most LEAF_POINTS a leaf, so count >= leaves.
+    const uint32_t leaves = 1u << depth_;
+    for (uint32_t node = leaves; node < 2 * leaves; ++node) {
+        const size_t begin = range_begin(node, depth_), end = range_begin(node + 1, depth_);
+        boxes_[node] = box_of<Box>(xyz, order_.data() + begin, end - begin);
+    }
+    for (uint32_t node = leaves - 1; node >= 1; --node) {
+        const Box &a = boxes_[2 * node], &b = boxes_[2 * node + 1];
+        for (int axis = 0; axis < 3; ++axis) {
+            boxes_[node].lo[axis] = std::min(a.lo[axis], b.lo[axis]);
+            boxes_[node].hi[axis] = std::max(a.hi[axis], b.hi[axis]);
+        }
+    }
+    return progress.report(1, 1);
+}
+
+uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) const {
+    Candidates found;
+    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (found.k == 0) return 0;
+    const double* q = xyz_ + 3 * size_t(query);
+    struct Pending {
+        uint32_t node;
+        int level;
+        double distance;
+    };
+    // Each node popped pushes at most its two children: depth + 2 entries suffice.
+    Pending stack[2 * 32 + 2];
+    uint32_t top = 0;
+    stack[top++] = Pending{1, 0, 0.0};
+    while (top > 0) {
+        const Pending pending = stack[--top];
+        if (found.full() && pending.distance >= found.worst()) continue;
+        if (pending.level == depth_) {
+            const size_t begin = range_begin(pending.node, pending.level), end = range_begin(pending.node + 1, pending.level);
+            for (size_t position = begin; position < end; ++position) {
+                const uint32_t p = order_[position];
+                if (p != query) found.offer(squared_distance(q, xyz_ + 3 * size_t(p)), p);
+            }
+            continue;
+        }
+        const uint32_t left = 2 * pending.node, right = left + 1;
+        const double to_left = squared_distance_to_box(q, boxes_[left]);
+        const double to_right = squared_distance_to_box(q, boxes_[right]);
+        const bool left_first = to_left <= to_right;
+        // The nearer child goes on top, to be searched first.
+        stack[top++] = Pending{left_first ? right : left, pending.level + 1, left_first ? to_right : to_left};
+        stack[top++] = Pending{left_first ? left : right, pending.level + 1, left_first ? to_left : to_right};
+    }
+    for (uint32_t j = 0; j < found.size; ++j) out[j] = found.index[j];
+    return found.size;
+}
+
+dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted, const ProgressSpan& progress,
+                                    uint32_t& k, Array<uint32_t>& neighbours) {
+    Context& context = progress.context();
+    const uint32_t count = index.size();
+    k = std::min(std::min(wanted, MAX_NEIGHBOURS), count > 0 ? count - 1 : 0);
+    neighbours.clear();
+    if (k == 0) return progress.report(1, 1);
+    if (!neighbours.resize(size_t(k) * count)) return context.fail_out_of_memory();
+    const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
+    // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size.
+    const size_t step = step_items(parts) / 16;
+    for (size_t first = 0; first < count; first += step) {
+        DBRG_PROPAGATE(progress.report(first, count));
+        const size_t last = std::min(size_t(count), first + step);
+        for_each_slice(last - first, parts, [&](size_t begin, size_t end) {
+            for (size_t i = first + begin; i < first + end; ++i) {
+                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i);
+            }
+        });
+    }
+    return progress.report(1, 1);
+}
+
+dbrg_status find_nearest_neighbours(const double* xyz, uint32_t count, uint32_t wanted, const ProgressSpan& progress,
+                                    uint32_t& k, Array<uint32_t>& neighbours) {
+    NeighbourIndex index(progress.context().memory);
+    DBRG_PROPAGATE(index.build(xyz, count, progress.part(0.0, 0.3)));
+    return find_nearest_neighbours(index, wanted, progress.part(0.3, 1.0), k, neighbours);
+}
+
+} // namespace dbrg

@@ -1,0 +1,61 @@
+// Neighbour search: the k nearest neighbours of every point, through a k-d tree over the points.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+#include "core/progress_span.h"
+
+namespace dbrg {
+
+// The most neighbours a search may ask for.
+constexpr uint32_t MAX_NEIGHBOURS = 32;
+
+// A k-d tree over `count` distinct points (x, y, z triples, which must outlive it) answering k-nearest-
+// neighbour queries. A search prunes every part of the tree not strictly nearer than the k-th neighbour found
+// so far, so a point among many equal distances (a grid, a sphere's centre) costs about what any other does;
+// among equal distances it keeps the points it meets first, ties in one leaf going to the smaller index. The
+// tree and the searches depend on the coordinates and their numbering only, so the answers are the same for
+// any number of threads and, for points numbered by their coordinates (conditioned points), any input order.
+class NeighbourIndex {
+public:
+    explicit NeighbourIndex(Memory& memory) : order_(memory), boxes_(memory) {}
+
+    // Builds the tree with up to context.params.threads threads. Reports to `progress`; returns DBRG_OK,
+    // DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
+    dbrg_status build(const double* xyz, uint32_t count, const ProgressSpan& progress);
+
+    // Writes the min(k, count - 1) nearest neighbours of point `query` to `out`, nearest first, the point
+    // itself left out, and returns how many. k is at most MAX_NEIGHBOURS. Safe to call from several threads.
+    uint32_t nearest(uint32_t query, uint32_t k, uint32_t* out) const;
+
+    uint32_t size() const { return count_; }
+
+private:
+    struct Box {
+        double lo[3], hi[3];
+    };
+    size_t range_begin(uint32_t node, int level) const;
+    void split_level(int level, uint32_t parts);
+
+    // The tree in heap layout: node 1 holds points order_[0 .. count_), node v's children are 2v and 2v + 1,
+    // each with half of v's range (the first the smaller half); the nodes at depth_ are the leaves.
+    const double* xyz_ = nullptr;
+    uint32_t count_ = 0;
+    int depth_ = 0;
+    Array<uint32_t> order_;
+    Array<Box> boxes_;
+};
+
+// The k nearest neighbours of every point: neighbours[k * i + j] is the (j + 1)-th nearest neighbour of point
+// i (as NeighbourIndex::nearest gives them); k is min(wanted, count - 1), wanted at most MAX_NEIGHBOURS. Uses
+// up to context.params.threads threads; reports to `progress`; returns DBRG_OK, DBRG_ERR_OUT_OF_MEMORY or
+// DBRG_ERR_CANCELLED.
+dbrg_status find_nearest_neighbours(const double* xyz, uint32_t count, uint32_t wanted, const ProgressSpan& progress,
+                                    uint32_t& k, Array<uint32_t>& neighbours);
+// The same through an index already built.
+dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted, const ProgressSpan& progress,
+                                    uint32_t& k, Array<uint32_t>& neighbours);
+
+} // namespace dbrg
