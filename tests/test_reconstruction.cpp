@@ -495,6 +495,11 @@ TEST_CASE("cleaning changes nothing on the generated clean samples") {
             CAPTURE(count);
             check_cleaning_changes_nothing(samples::sample(shape, count));
         }
+        // Sampled unevenly: the sparse end, 30 times sparser, is no outlier.
+        for (uint64_t seed : {1, 2}) {
+            CAPTURE(seed);
+            check_cleaning_changes_nothing(samples::sample_clustered(shape, 4000, 30, 4, seed));
+        }
     }
 }
 

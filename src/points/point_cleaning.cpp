@@ -33,9 +33,14 @@ constexpr uint32_t MIN_POINTS = 16 * WIDE_NEIGHBOURS;
 constexpr uint32_t NOISE_SAMPLE_STRIDE = 8;
 
 // A point whose NEIGHBOURS-th neighbour is this many times farther than the median point's sits where the
-// sample is about this squared (36) times sparser than typical on a surface: it is not sampled as part of
-// the surface. (Clean samples, meshes' vertices and simulated scans alike, stay below 4.2.)
+// sample is about this squared (36) times sparser than typical (clean samples, meshes' vertices and
+// simulated scans alike, stay below 4.2) ...
 constexpr double OUTLIER_GLOBAL_FACTOR = 6.0;
+// Either way, it is an outlier only if its neighbours sample no surface it lies on: a sparse part of a
+// surface (a scan's far side, an unevenly decimated mesh's smooth part, next to a dense one) is as sparse,
+// but its points lie within a small share of their spacing of the surface their neighbours fit, while a
+// point in empty space is about as far from that surface as from them.
+constexpr double OFF_SURFACE_SHARE = 0.25;
 // ... or this many times farther than the median of its own neighbours': the point stands off a surface
 // its neighbours sample densely. (Clean samples stay below 2.6: a border or a density gradient doubles
 // it at most.)
@@ -63,6 +68,7 @@ constexpr double NOISE_SPREAD_LIMIT = 0.95;
 
 // Projections onto the local quadric, each over the positions the last one gave (neighbourhoods fixed).
 constexpr uint32_t SMOOTHING_ITERATIONS = 3;
+
 
 enum PointFlag : uint8_t { KEPT = 0, OUTLIER = 1, MERGED = 2 };
 
@@ -137,7 +143,8 @@ private:
                 double around[NEIGHBOURS];
                 for (uint32_t j = 0; j < NEIGHBOURS; ++j) around[j] = spacing_[list(uint32_t(i))[j]];
                 const double local = median_of(around, NEIGHBOURS);
-                const bool sparse = spacing_[i] > OUTLIER_GLOBAL_FACTOR * typical || spacing_[i] > OUTLIER_LOCAL_FACTOR * local;
+                const bool sparse = (spacing_[i] > OUTLIER_LOCAL_FACTOR * local ||
+                                     spacing_[i] > OUTLIER_GLOBAL_FACTOR * typical) && off_surface(uint32_t(i));
                 flags_[i] = sparse ? OUTLIER : KEPT;
             }
         }));
@@ -145,6 +152,15 @@ private:
         for (uint32_t i = 0; i < n_; ++i) count += flags_[i] == OUTLIER;
         context_.stats.outliers = count;
         return DBRG_OK;
+    }
+
+    // Whether point i is farther than OFF_SURFACE_SHARE of its spacing from the local quadric that fits its
+    // neighbours (without it).
+    bool off_surface(uint32_t i) const {
+        Vec3 offsets[NEIGHBOURS];
+        const Vec3 point = point_of(points_.coordinates.data(), i);
+        for (uint32_t j = 0; j < NEIGHBOURS; ++j) offsets[j] = point_of(points_.coordinates.data(), list(i)[j]) - point;
+        return fabs(fit_local_quadric(offsets, NEIGHBOURS).height) > OFF_SURFACE_SHARE * spacing_[i];
     }
 
     // Greedy along the numbering (which depends on the coordinates only): a kept point absorbs the later
