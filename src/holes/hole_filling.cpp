@@ -54,9 +54,10 @@ dbrg_status HoleFiller::fill_with_ears(const ProgressSpan& ears, const ProgressS
         const uint32_t start = surface_.find_halfedge(u, v);
         if (start == NO_HALFEDGE || !surface_.is_boundary(start)) continue;  // filled with another hole already
         if (!collect_hole(start, loop)) continue;
-        // A long loop that some edges call a border (is_hole) is filled over its own vertices only: removing
-        // grown faces to fill it would trade surface the data support for a closure they only half support.
-        const bool border_like = count_open_edges(loop) > 0 && loop.size() > SHORT_LOOP_EDGES;
+        // A long, wide loop that some edges call a border (is_hole) is filled over its own vertices only:
+        // removing grown faces to fill it would trade surface the data support for a closure they only half
+        // support. A narrow one is a crack in a surface the data support on both sides.
+        const bool border_like = count_open_edges(loop) > 0 && loop.size() > SHORT_LOOP_EDGES && !is_narrow(loop);
         bool filled = false;
         DBRG_PROPAGATE(fill_within_fold_limits(u, v, border_like ? 0 : MAX_ENLARGEMENTS, journal, filled));
         if (!filled) continue;
