@@ -7,7 +7,6 @@ triangle uses. Python 3 with numpy; under a minute.
     python3 tests/test_scans.py DBRG
 """
 import json
-import math
 import os
 import subprocess
 import sys
@@ -23,25 +22,6 @@ DBRG = None  # the program, from the command line
 # The shared data, beside the repository (DBRG_DATA_DIR overrides the place), as the C++ tests find it.
 DATA_DIR = os.environ.get("DBRG_DATA_DIR") or os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                                             "shared", "data")
-
-
-def ellipsoid_mesh(radii=(1.0, 0.7, 0.5), rings=40, segments=80):
-    """A closed ellipsoid, faces turned outwards: poles and rings - 1 parallels (genus 0)."""
-    polar = math.pi * np.arange(1, rings) / rings
-    azimuth = 2 * math.pi * np.arange(segments) / segments
-    pp, aa = np.meshgrid(polar, azimuth, indexing="ij")
-    parallels = np.stack([np.sin(pp) * np.cos(aa), np.sin(pp) * np.sin(aa), np.cos(pp)], axis=-1).reshape(-1, 3)
-    vertices = np.concatenate([[[0.0, 0.0, 1.0]], parallels, [[0.0, 0.0, -1.0]]]) * np.array(radii)
-    south = len(vertices) - 1
-    ring = lambda r, k: 1 + r * segments + k % segments  # noqa: E731
-    triangles = []
-    for k in range(segments):
-        triangles.append((0, ring(0, k), ring(0, k + 1)))
-        triangles.append((south, ring(rings - 2, k + 1), ring(rings - 2, k)))
-        for r in range(rings - 2):
-            triangles.append((ring(r, k), ring(r + 1, k), ring(r + 1, k + 1)))
-            triangles.append((ring(r, k), ring(r + 1, k + 1), ring(r, k + 1)))
-    return vertices, np.array(triangles)
 
 
 def run_json(command):
@@ -83,7 +63,7 @@ class ScansComeOutClosed(unittest.TestCase):
 
     def test_ellipsoid(self):
         for seed in (1, 2):
-            self.check("ellipsoid", ellipsoid_mesh(), 0, seed)
+            self.check("ellipsoid", ss.ellipsoid_mesh((1.0, 0.7, 0.5), 40, 80), 0, seed)
 
     def test_shared_data_rough(self):
         # Rough scans of closed shared-data models: cracks between misregistered views, narrow next to the

@@ -359,25 +359,13 @@ RegionGrower::CandidateVerdict RegionGrower::examine(const Candidate& c, double&
 bool RegionGrower::passes_boundary_test(const Candidate& c) const {
     const double factor = context_.params.boundary_factor;
     if (factor == 0) return true;
+    const auto radius = [&](uint32_t f) { return face_radius(delaunay_, surface_, f); };
     const double mean = context_.params.boundary_mean == DBRG_BOUNDARY_MEAN_GLOBAL && !local_boundary_test_
                             ? radius_sum_ / surface_.live_face_count()
-                            : local_mean_radius(c.halfedge);
+                            : mean_radius_at_ends(surface_, c.halfedge, radius);
     return c.radius <= factor * mean;
 }
 
-// Mean circumradius of the faces around both ends of the edge (of a pinched end, its first fan's).
-double RegionGrower::local_mean_radius(uint32_t halfedge) const {
-    double sum = 0;
-    uint32_t count = 0;
-    const uint32_t ends[2] = {surface_.origin(halfedge), surface_.target(halfedge)};
-    for (uint32_t end : ends) {
-        surface_.walk_fan(surface_.vertex_halfedge(end), [&](uint32_t h) {
-            sum += face_radius(delaunay_, surface_, Surface::face_of(h));
-            ++count;
-        });
-    }
-    return sum / count;
-}
 
 // The candidate's place in its edge's candidate order, as select_candidate ranked it (the turn is
 // recomputed the same way rather than stored in every queue entry).

@@ -72,7 +72,6 @@ private:
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
     CandidateVerdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
     bool passes_boundary_test(const Candidate& candidate) const;
-    double local_mean_radius(uint32_t halfedge) const;
     CandidateRank rank(const Candidate& candidate) const;
     dbrg_status propose(uint32_t halfedge, const CandidateRank* after);
     // `check`, when given, is what surface_.check_face(a, b, c) returned with the surface as it is now.

@@ -22,6 +22,21 @@ inline double face_radius(const Tetrahedralization& delaunay, const Surface& sur
                         delaunay.point(surface.corner(f, 2)));
 }
 
+// The mean of radius(f) over the faces around both ends of `halfedge` (of a pinched end, its first fan's):
+// the local scale the open-surface test (§4) can weigh a candidate against.
+template <class FaceRadius>
+double mean_radius_at_ends(const Surface& surface, uint32_t halfedge, const FaceRadius& radius) {
+    double sum = 0;
+    uint32_t count = 0;
+    for (uint32_t end : {surface.origin(halfedge), surface.target(halfedge)}) {
+        surface.walk_fan(surface.vertex_halfedge(end), [&](uint32_t h) {
+            sum += radius(Surface::face_of(h));
+            ++count;
+        });
+    }
+    return sum / count;
+}
+
 // The share of the points S has now (pinch removal may give some back): what step observers are told.
 inline double points_reached(const Tetrahedralization& delaunay, const Surface& surface) {
     return double(surface.used_vertex_count()) / delaunay.vertex_count();

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "core/status.h"
+#include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
 
 namespace dbrg {
@@ -153,25 +154,13 @@ dbrg_status PlanarGrower::postpone(Candidate c) {
 bool PlanarGrower::passes_boundary_test(const Candidate& c) const {
     const double factor = context_.params.boundary_factor;
     if (factor == 0) return true;
+    const auto radius = [&](uint32_t f) { return triangle_radius(surface_.face_tet(f)); };
     const double mean = context_.params.boundary_mean == DBRG_BOUNDARY_MEAN_GLOBAL
                             ? radius_sum_ / surface_.live_face_count()
-                            : local_mean_radius(c.halfedge);
+                            : mean_radius_at_ends(surface_, c.halfedge, radius);
     return c.radius <= factor * mean;
 }
 
-// Mean radius of the faces around both ends of the edge (of a pinched end, its first fan's).
-double PlanarGrower::local_mean_radius(uint32_t halfedge) const {
-    double sum = 0;
-    uint32_t count = 0;
-    const uint32_t ends[2] = {surface_.origin(halfedge), surface_.target(halfedge)};
-    for (uint32_t end : ends) {
-        surface_.walk_fan(surface_.vertex_halfedge(end), [&](uint32_t h) {
-            sum += triangle_radius(surface_.face_tet(Surface::face_of(h)));
-            ++count;
-        });
-    }
-    return sum / count;
-}
 
 // Queues the triangle across boundary half-edge `halfedge` of S, if it is finite: S's faces keep the corner
 // order of their triangles, so half-edge 3 f + i runs opposite corner i + 2 of triangle face_tet(f).

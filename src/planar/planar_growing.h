@@ -40,7 +40,6 @@ private:
     dbrg_status grow_component(const ProgressSpan& progress);
     dbrg_status drain_queue(const ProgressSpan& progress);
     bool passes_boundary_test(const Candidate& candidate) const;
-    double local_mean_radius(uint32_t halfedge) const;
     double triangle_radius(uint32_t t) const;
     dbrg_status propose(uint32_t halfedge);
     dbrg_status add_triangle(uint32_t t, const FaceCheck& check);

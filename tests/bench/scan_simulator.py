@@ -169,6 +169,26 @@ def torus_mesh(major=1.0, minor=0.4, rings=96, sides=48):
     return vertices, triangles
 
 
+def ellipsoid_mesh(radii=(1.0, 1.0, 1.0), rings=48, segments=96):
+    """A closed ellipsoid with the given semi-axes, faces turned outwards: two poles and rings - 1
+    parallels of `segments` vertices each."""
+    polar = math.pi * np.arange(1, rings) / rings
+    azimuth = 2 * math.pi * np.arange(segments) / segments
+    pp, aa = np.meshgrid(polar, azimuth, indexing="ij")
+    parallels = np.stack([np.sin(pp) * np.cos(aa), np.sin(pp) * np.sin(aa), np.cos(pp)], axis=-1).reshape(-1, 3)
+    vertices = np.concatenate([[[0.0, 0.0, 1.0]], parallels, [[0.0, 0.0, -1.0]]]) * np.array(radii)
+    south = len(vertices) - 1
+    ring = lambda r, k: 1 + r * segments + k % segments  # noqa: E731
+    triangles = []
+    for k in range(segments):
+        triangles.append((0, ring(0, k), ring(0, k + 1)))
+        triangles.append((south, ring(rings - 2, k + 1), ring(rings - 2, k)))
+        for r in range(rings - 2):
+            triangles.append((ring(r, k), ring(r + 1, k), ring(r + 1, k + 1)))
+            triangles.append((ring(r, k), ring(r + 1, k + 1), ring(r, k + 1)))
+    return vertices, np.array(triangles)
+
+
 def mean_side(vertices, triangles):
     """The mean length of the triangles' sides, each triangle's three counted (as `dbrg stats` does)."""
     corners = vertices[triangles]

@@ -20,22 +20,8 @@ SIMULATOR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scan_simul
 
 
 def uv_sphere(rings=48, segments=96):
-    """The unit sphere as a closed triangle mesh, faces turned outwards: poles, rings - 1 parallels."""
-    polar = math.pi * np.arange(1, rings) / rings
-    azimuth = 2 * math.pi * np.arange(segments) / segments
-    pp, aa = np.meshgrid(polar, azimuth, indexing="ij")
-    parallels = np.stack([np.sin(pp) * np.cos(aa), np.sin(pp) * np.sin(aa), np.cos(pp)], axis=-1).reshape(-1, 3)
-    vertices = np.concatenate([[[0.0, 0.0, 1.0]], parallels, [[0.0, 0.0, -1.0]]])
-    south = len(vertices) - 1
-    ring = lambda r, k: 1 + r * segments + k % segments  # noqa: E731
-    triangles = []
-    for k in range(segments):
-        triangles.append((0, ring(0, k), ring(0, k + 1)))
-        triangles.append((south, ring(rings - 2, k + 1), ring(rings - 2, k)))
-        for r in range(rings - 2):
-            triangles.append((ring(r, k), ring(r + 1, k), ring(r + 1, k + 1)))
-            triangles.append((ring(r, k), ring(r + 1, k + 1), ring(r, k + 1)))
-    return vertices, np.array(triangles)
+    """The unit sphere as a closed triangle mesh, faces turned outwards."""
+    return ss.ellipsoid_mesh((1.0, 1.0, 1.0), rings, segments)
 
 
 def sphere_ranges(eyes, directions):
