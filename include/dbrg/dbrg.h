@@ -364,7 +364,7 @@ typedef struct dbrg_stats {
 
     size_t peak_bytes;               /* the most memory held through the allocator at once */
 
-    uint32_t handles_removed;        /* small handles cut from closed components after hole filling (growing
+    uint32_t handles_removed;        /* small handles cut from the components after hole filling (growing
                                         bridged two sheets closer than the sample spacing) */
 
     /* Fields from version 0.4.0 on: the cleaning stage (all 0 when params.cleaning is DBRG_CLEANING_OFF). */

@@ -53,7 +53,7 @@ public:
     // enlarging holes cut off, reporting to `islands`. Fills the other hole fields of context.stats.
     dbrg_status fill_with_ears(const ProgressSpan& ears, const ProgressSpan& islands);
 
-    // Topological noise removal: cuts closed components along short non-separating cycles and fills both
+    // Topological noise removal: cuts components along short non-separating cycles and fills both
     // sides (small_handles.cpp). Reports to `progress`. Fills the handle fields of context.stats.
     dbrg_status remove_small_handles(const ProgressSpan& progress);
 

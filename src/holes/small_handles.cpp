@@ -1,5 +1,5 @@
-// Small handles: removes topological noise from the closed components of S after hole filling. Where a
-// closed surface comes closer to itself than the sample spacing, growing can bridge the two sheets with a
+// Small handles: removes topological noise from the components of S after hole filling. Where a
+// surface comes closer to itself than the sample spacing, growing can bridge the two sheets with a
 // few triangles: a handle whose shortest non-separating cycle is only a few edges long. Each such handle
 // is cut along that cycle and both sides are filled; real handles, whose non-separating cycles are long
 // in units of the local edges, stay.
