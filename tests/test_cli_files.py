@@ -156,6 +156,12 @@ class RefusedOutputs(Folder):
         self.assertIn("without the triangles", err)
         self.assertFalse(os.path.exists(self.path("x.xyz")))
 
+    def test_las_is_not_written(self):
+        code, _, err = self.demo(self.path("x.las"))
+        self.assertEqual(code, 2)
+        self.assertIn("LAS files are read, not written", err)
+        self.assertFalse(os.path.exists(self.path("x.las")))
+
     def test_output_that_is_the_input(self):
         source = self.path("in.ply")
         self.assertEqual(self.demo(source)[0], 0)
@@ -257,7 +263,7 @@ class Messages(Folder):
     def test_help_lists_every_input_format(self):
         code, out, _ = run("reconstruct", "--help")
         self.assertEqual(code, 0)
-        for extension in (".ply", ".obj", ".off", ".stl", ".xyz", ".pts"):
+        for extension in (".ply", ".obj", ".off", ".stl", ".xyz", ".pts", ".las"):
             self.assertIn(extension, out.split("writes it")[0])
 
 
@@ -276,6 +282,27 @@ def read_obj(path):
                 corners = [corner.split("//") for corner in words[1:]]
                 faces.append([(int(c[0]) - 1, int(c[1]) - 1 if len(c) > 1 else None) for c in corners])
     return positions, normals, faces
+
+
+def sphere_points(count):
+    """`count` points on the unit sphere (golden-angle spiral)."""
+    points = []
+    for i in range(count):
+        z = 1 - 2 * (i + 0.5) / count
+        r, angle = math.sqrt(1 - z * z), math.pi * (1 + 5 ** 0.5) * i
+        points.append((r * math.cos(angle), r * math.sin(angle), z))
+    return points
+
+
+def write_las(path, records, scale=0.001, offset=(1000.0, 2000.0, 0.0)):
+    """A LAS 1.2 file of point format 2 (ASPRS layout): records are (X, Y, Z, intensity, red, green, blue)
+    integers; positions are X * scale + offset."""
+    header = b"LASF" + bytes(20) + bytes([1, 2]) + bytes(64) + struct.pack("<HH", 1, 2024)
+    header += struct.pack("<HIIBHI", 227, 227, 0, 2, 26, len(records)) + bytes(20)
+    header += struct.pack("<3d", scale, scale, scale) + struct.pack("<3d", *offset) + bytes(48)
+    assert len(header) == 227
+    with open(path, "wb") as f:
+        f.write(header + b"".join(struct.pack("<3iH6x3H", *r) for r in records))
 
 
 def ply_header(path):
@@ -328,6 +355,17 @@ class ViewerOutput(Folder):
         # The kept vertices are in their input order.
         order = [all_positions.index(p) for p in positions]
         self.assertEqual(order, sorted(order))
+
+    def test_las_input(self):
+        scale, offset = 0.001, (1000.0, 2000.0, 0.0)
+        records = [(round(x * 1000), round(y * 1000), round(z * 1000), 7 * i, i, 2 * i, 3 * i)
+                   for i, (x, y, z) in enumerate(sphere_points(600))]
+        write_las(self.path("scan.las"), records, scale, offset)
+        code, _, err = run("reconstruct", self.path("scan.las"), "-q", "-o", self.path("out.obj"))
+        self.assertEqual(code, 0, err)
+        positions, _, faces = read_obj(self.path("out.obj"))
+        self.assertEqual(positions, [tuple(r[k] * scale + offset[k] for k in range(3)) for r in records])
+        self.assertGreater(len(faces), len(records))
 
     def test_float_input_gives_float_output(self):
         code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "800", "-q",

@@ -28,6 +28,7 @@ IoStatus read_obj(ByteSource& source, MeshData& out);
 IoStatus read_off(ByteSource& source, MeshData& out);
 IoStatus read_xyz(ByteSource& source, MeshData& out);
 IoStatus read_stl(ByteSource& source, MeshData& out);
+IoStatus read_las(ByteSource& source, MeshData& out);
 
 void write_ply(const MeshData& mesh, bool binary, std::string& out);
 void write_obj(const MeshData& mesh, std::string& out);

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <exception>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "io/mesh_io.h"
@@ -69,9 +70,10 @@ extern "C" DBRG_IO_API dbrg_io_status dbrg_io_write_mesh(const char* path, const
             put_message(message, message_capacity, "path is NULL");
             return DBRG_IO_ERR_INVALID_ARGUMENT;
         }
-        if (!dbrg::io::format_from_path(path)) {
+        const std::optional<dbrg::io::MeshFormat> format = dbrg::io::format_from_path(path);
+        if (!format || *format == dbrg::io::MeshFormat::las) {
             put_message(message, message_capacity,
-                        std::string(path) + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts or .stl)");
+                        std::string(path) + ": unknown file type for writing (expected .ply, .obj, .off, .xyz, .pts or .stl)");
             return DBRG_IO_ERR_INVALID_ARGUMENT;
         }
         MeshData mesh;

@@ -66,6 +66,7 @@ std::optional<MeshFormat> format_from_path(std::string_view path) {
     if (extension == "off") return MeshFormat::off;
     if (extension == "xyz" || extension == "pts") return MeshFormat::xyz;
     if (extension == "stl") return MeshFormat::stl;
+    if (extension == "las") return MeshFormat::las;
     return std::nullopt;
 }
 
@@ -77,6 +78,7 @@ const char* format_name(MeshFormat format) {
     case MeshFormat::off: return "off";
     case MeshFormat::xyz: return "xyz";
     case MeshFormat::stl: return "stl";
+    case MeshFormat::las: return "las";
     }
     return "unknown";
 }
@@ -91,6 +93,7 @@ IoStatus read_mesh_source(ByteSource& source, MeshFormat format, MeshData& out) 
         case MeshFormat::off: return read_off(source, out);
         case MeshFormat::xyz: return read_xyz(source, out);
         case MeshFormat::stl: return read_stl(source, out);
+        case MeshFormat::las: return read_las(source, out);
         }
         return IoStatus::failure("unknown format");
     });
@@ -107,8 +110,12 @@ IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, Mesh
 
 IoStatus read_mesh(const std::string& path, MeshData& out) {
     out = MeshData();
+    if (lower_extension(path) == "laz") {
+        return IoStatus::failure(path + ": LAZ files are compressed; decompress it to .las first, e.g. with "
+                                        "'laszip -i FILE.laz -o FILE.las'");
+    }
     const std::optional<MeshFormat> format = format_from_path(path);
-    if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts or .stl)");
+    if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts, .stl or .las)");
     IoStatus status = without_exceptions([&] {
         // Closed on every way out, a thrown bad_alloc included.
         const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
@@ -144,6 +151,7 @@ IoStatus read_mesh(const std::string& path, MeshData& out) {
 IoStatus write_mesh_buffer(const MeshData& mesh, MeshFormat format, std::string& out) {
     IoStatus status = check_mesh(mesh);
     if (!status) return status;
+    if (format == MeshFormat::las) return IoStatus::failure("LAS files are read, not written (use .ply .obj .off .stl or .xyz)");
     return without_exceptions([&] {
         switch (format) {
         case MeshFormat::ply_binary: write_ply(mesh, true, out); break;
@@ -152,6 +160,7 @@ IoStatus write_mesh_buffer(const MeshData& mesh, MeshFormat format, std::string&
         case MeshFormat::off: write_off(mesh, out); break;
         case MeshFormat::xyz: write_xyz(mesh, out); break;
         case MeshFormat::stl: write_stl(mesh, out); break;
+        case MeshFormat::las: break;
         }
         return IoStatus::success();
     });
