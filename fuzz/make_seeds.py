@@ -249,13 +249,20 @@ LAS_SEEDS.update({
 })
 
 
+# Vertex properties of every type, carried to the mesh with their names and types.
+PLY_PROPERTIES = (b"ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty char c\nproperty float y\n"
+                  b"property float z\nproperty uchar red\nproperty short s\nproperty ushort intensity\nproperty int i\n"
+                  b"property uint u\nproperty float confidence\nproperty double quality\nend_header\n"
+                  b"0 -128 0 0 255 -32768 65535 -2147483648 4294967295 0.5 1e-300\n1 127 1 1 0 32767 0 2147483647 0 inf -0\n")
+
 READERS = {
     "fuzz_read_ply": {"ascii": PLY_ASCII, "little_endian": ply_binary("<"), "big_endian": ply_binary(">"),
                       "strips": PLY_STRIPS, "truncated": ply_binary("<")[:-7],
                       "lying_count": PLY_ASCII.replace(b"element vertex 4", b"element vertex 4000000000"),
                       "zero_bytes": bytes(1024), "header_then_zero_bytes": b"ply\nformat ascii 1.0\n" + bytes(256),
                       "ascii_turns_binary": PLY_ASCII[:PLY_ASCII.index(b"1 0 0 0")] + BINARY_TAIL,
-                      "repeated_property": PLY_REPEATED_PROPERTY},
+                      "repeated_property": PLY_REPEATED_PROPERTY,
+                      "vertex_properties": PLY_PROPERTIES, "vertex_property_out_of_range": PLY_PROPERTIES.replace(b" 65535 ", b" 65536 ")},
     "fuzz_read_obj": {"tetrahedron": b"# comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1/1 4/1 3/1\nf 2//1 3//1 4//1\n",
                       "negative_indices": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0 1.0\nvt 0 0\nvn 0 0 1\nf -4 -3 -1 -2\ng part\nusemtl m\n",
                       "bad_index": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n",

@@ -1428,3 +1428,114 @@ TEST_CASE("LAS random corruptions are refused or read without crashing") {
         for (const VertexProperty& property : out.properties) CHECK(property.size() == out.vertex_count());
     }
 }
+
+
+TEST_CASE("PLY vertex properties of every type are read with their names and types and written back the same") {
+    const std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty uchar red\nproperty float y\n"
+        "property uchar green\nproperty uchar blue\nproperty uchar alpha\nproperty float z\nproperty float nx\n"
+        "property float ny\nproperty float nz\nproperty char c\nproperty short s\nproperty ushort intensity\n"
+        "property int i\nproperty uint u\nproperty float confidence\nproperty double quality\n"
+        "property list uchar int ignored_list\n"
+        "element face 1\nproperty list uchar int vertex_indices\nproperty uchar face_red\nend_header\n"
+        "0 255 0 0 0 255 0 0 0 1 -128 -32768 65535 -2147483648 4294967295 0.5 0.1 2 7 7\n"
+        "1 1 0 2 3 4 0 0 1 0 127 32767 0 2147483647 0 -1e30 1e-300 0\n"
+        "0 10 1 20 30 40 0 1 0 0 0 0 1 0 1 inf -0 1 9\n"
+        "3 0 1 2 200\n";
+    const MeshData mesh = read_ok(ascii, MeshFormat::ply_ascii);
+    REQUIRE(mesh.vertex_count() == 3);
+    CHECK(mesh.positions == std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    CHECK(mesh.normals.size() == 9);
+    const std::vector<std::pair<std::string, ValueType>> expected = {
+        {"red", ValueType::uint8},      {"green", ValueType::uint8},   {"blue", ValueType::uint8},
+        {"alpha", ValueType::uint8},    {"c", ValueType::int8},        {"s", ValueType::int16},
+        {"intensity", ValueType::uint16}, {"i", ValueType::int32},     {"u", ValueType::uint32},
+        {"confidence", ValueType::float32}, {"quality", ValueType::float64}};
+    REQUIRE(mesh.properties.size() == expected.size());
+    for (size_t p = 0; p < expected.size(); ++p) {
+        CHECK(mesh.properties[p].name == expected[p].first);
+        CHECK(mesh.properties[p].type == expected[p].second);
+        CHECK(mesh.properties[p].size() == 3);
+    }
+    CHECK(mesh.properties[0].value(0) == 255);
+    CHECK(mesh.properties[1].value(1) == 2);
+    CHECK(mesh.properties[3].value(2) == 40);
+    CHECK(mesh.properties[4].value(0) == -128);
+    CHECK(mesh.properties[5].value(1) == 32767);
+    CHECK(mesh.properties[6].value(0) == 65535);
+    CHECK(mesh.properties[7].value(0) == -2147483648.0);
+    CHECK(mesh.properties[8].value(0) == 4294967295.0);
+    CHECK(mesh.properties[9].value(1) == -1e30f);
+    CHECK(std::isinf(mesh.properties[9].value(2)));
+    CHECK(mesh.properties[10].value(0) == 0.1);
+    CHECK(mesh.properties[10].value(1) == 1e-300);
+    CHECK(std::signbit(mesh.properties[10].value(2)));
+    // Every writer that has vertex properties (PLY, both encodings) gives them back bit for bit.
+    for (MeshFormat format : {MeshFormat::ply_binary, MeshFormat::ply_ascii}) {
+        CAPTURE(format_name(format));
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        const MeshData back = read_ok(bytes, format);
+        CHECK(same_properties(back.properties, mesh.properties));
+        CHECK(back.normals == mesh.normals);
+        CHECK(back.triangles == mesh.triangles);
+    }
+    // A big-endian file gives the same values.
+    ByteWriter big;
+    big.big_endian = true;
+    big.text("ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty double x\nproperty double y\nproperty double z\n"
+             "property ushort intensity\nproperty int i\nproperty float confidence\nend_header\n");
+    big.put(1.0).put(2.0).put(3.0).put(uint16_t(65534)).put(int32_t(-70000)).put(0.25f);
+    const MeshData from_big = read_ok(big.bytes, MeshFormat::ply_binary);
+    REQUIRE(from_big.properties.size() == 3);
+    CHECK(from_big.properties[0].value(0) == 65534);
+    CHECK(from_big.properties[1].value(0) == -70000);
+    CHECK(from_big.properties[2].value(0) == 0.25);
+}
+
+TEST_CASE("an ascii PLY value that its property's type cannot hold is refused, naming the vertex") {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                             "property uchar red\nend_header\n0 0 0 255\n";
+    check_rejected(head + "1 1 1 256\n", MeshFormat::ply_ascii, "PLY line 10: vertex 1: property 'red' holds 256, not a uchar");
+    check_rejected(head + "1 1 1 1.5\n", MeshFormat::ply_ascii, "vertex 1: property 'red' holds 1.5, not a uchar");
+    check_rejected(head + "1 1 1 -1\n", MeshFormat::ply_ascii, "vertex 1: property 'red' holds -1, not a uchar");
+    check_rejected(head + "1 1 1 nan\n", MeshFormat::ply_ascii, "vertex 1: property 'red' holds nan, not a uchar");
+}
+
+TEST_CASE("writers refuse vertex properties that do not fit the mesh or a PLY header") {
+    MeshData mesh = float_exact_mesh();
+    std::string bytes;
+    auto refused = [&](VertexProperty property, const std::string& expected) {
+        MeshData with = mesh;
+        with.properties = {std::move(property)};
+        const IoStatus status = write_mesh_buffer(with, MeshFormat::ply_binary, bytes);
+        CHECK_FALSE(status.ok);
+        CHECK(status.message == expected);
+    };
+    VertexProperty red{"red", ValueType::uint8, {1, 2, 3, 4}};
+    REQUIRE(write_mesh_buffer(MeshData(mesh), MeshFormat::ply_binary, bytes).ok);
+    refused({"red", ValueType::uint8, {1, 2, 3}}, "vertex property 'red' has 3 values for 4 vertices");
+    refused({"red", ValueType::uint16, {1, 2, 3, 4}}, "vertex property 'red' has 2 values for 4 vertices");
+    refused({"", ValueType::uint8, {1, 2, 3, 4}}, "a vertex property has no name");
+    refused({"my red", ValueType::uint8, {1, 2, 3, 4}}, "vertex property 'my red': a name holds no blank or control character");
+    refused({"nx", ValueType::uint8, {1, 2, 3, 4}}, "vertex property 'nx': the name is taken");
+    MeshData twice = mesh;
+    twice.properties = {red, red};
+    CHECK(write_mesh_buffer(twice, MeshFormat::ply_binary, bytes).message == "vertex property 'red': the name is taken");
+    mesh.properties = {red};
+    CHECK(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).ok);
+}
+
+TEST_CASE("LAS intensity and colour become ushort PLY properties") {
+    LasFile file;
+    file.format = 3;
+    file.points = assorted_las_points();
+    const MeshData mesh = read_ok(las_bytes(file), MeshFormat::las);
+    std::string bytes;
+    REQUIRE(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).ok);
+    CHECK(bytes.find("property ushort intensity\nproperty ushort red\nproperty ushort green\nproperty ushort blue\n") !=
+          std::string::npos);
+    const MeshData back = read_ok(bytes, MeshFormat::ply_binary);
+    CHECK(same_bits(back.positions, mesh.positions));
+    CHECK(same_properties(back.properties, mesh.properties));
+}

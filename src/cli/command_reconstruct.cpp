@@ -28,7 +28,9 @@ const char* const RECONSTRUCT_USAGE =
     "Reconstructs an oriented manifold triangle surface through the points of INPUT (.ply .obj .off .stl\n"
     ".xyz .pts .las; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with\n"
     "every input point as a vertex, in input order, and in .ply and .obj each vertex's normal (pointing\n"
-    "to the outside of closed surfaces). OUTPUT is replaced only once it is completely written.\n"
+    "to the outside of closed surfaces). A .ply OUTPUT also carries the input's other vertex properties\n"
+    "(colours, intensity, ...; LAS intensity and colour). OUTPUT is replaced only once it is completely\n"
+    "written.\n"
     "\n"
     "  -o, --output FILE        the mesh to write (required)\n"
     "  --demo                   use a generated sample instead of INPUT\n"
@@ -243,6 +245,8 @@ int run_reconstruct(int argc, char** argv) {
     } else {
         const io::IoStatus read = io::read_mesh(input, mesh);
         if (!read) return report_error(EXIT_FAILED, read.message);
+        // The surface's normals replace the input's; its other vertex properties go to the output as read.
+        mesh.normals.clear();
     }
     const double seconds_read = seconds_now() - start;
 

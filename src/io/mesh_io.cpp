@@ -8,6 +8,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <unordered_set>
 
 #include <sys/stat.h>
 
@@ -40,12 +41,33 @@ IoStatus without_exceptions(Action&& action) {
     }
 }
 
+// Each vertex property has a value per vertex and a name a PLY header can hold, used once and by none of
+// the values the writer writes itself.
+IoStatus check_properties(const MeshData& mesh) {
+    std::unordered_set<std::string> names = {"x", "y", "z", "nx", "ny", "nz"};
+    for (const VertexProperty& property : mesh.properties) {
+        const std::string quoted = "vertex property '" + property.name + "'";
+        if (property.name.empty()) return IoStatus::failure("a vertex property has no name");
+        for (char c : property.name) {
+            if (static_cast<unsigned char>(c) <= ' ' || c == '\x7f') return IoStatus::failure(quoted + ": a name holds no blank or control character");
+        }
+        if (!names.insert(property.name).second) return IoStatus::failure(quoted + ": the name is taken");
+        if (property.bytes.size() != mesh.vertex_count() * value_size(property.type)) {
+            return IoStatus::failure(quoted + " has " + std::to_string(property.bytes.size() / value_size(property.type)) +
+                                     " values for " + std::to_string(mesh.vertex_count()) + " vertices");
+        }
+    }
+    return IoStatus::success();
+}
+
 IoStatus check_mesh(const MeshData& mesh) {
     if (mesh.positions.size() % 3 != 0) return IoStatus::failure("the position array's length is not a multiple of 3");
     if (mesh.triangles.size() % 3 != 0) return IoStatus::failure("the triangle array's length is not a multiple of 3");
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
         return IoStatus::failure("the normal array's length differs from the position array's");
     }
+    IoStatus status = check_properties(mesh);
+    if (!status) return status;
     if (mesh.triangle_count() > std::numeric_limits<uint32_t>::max()) return IoStatus::failure("too many triangles to write");
     const size_t vertex_count = mesh.vertex_count();
     for (size_t i = 0; i < mesh.triangles.size(); ++i) {

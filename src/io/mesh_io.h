@@ -34,8 +34,9 @@ struct VertexProperty {
     size_t size() const { return bytes.size() / value_size(type); }
     // The value of `vertex` (every type's values are exact as doubles).
     double value(size_t vertex) const;
-    // Appends `value` converted to `type` (exact for a value of that type).
-    void append(double value);
+    // Appends `value` as `type`: a float32 takes the nearest float (infinity beyond its range); an integer
+    // type takes only whole numbers in its range, else nothing is appended and the result is false.
+    bool append(double value);
 };
 
 struct MeshData {
@@ -102,7 +103,9 @@ IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, Mesh
 // Writes `mesh` to `path` as `format`, through write_file (file_output.h): a failed write leaves the file
 // that was there untouched. Positions round-trip exactly through every format except STL, which stores
 // float32 (exact for coordinates that are floats already). XYZ writes the points only; normals go to PLY
-// (float nx ny nz) and OBJ (vn lines, faces as v//vn) and round-trip exactly through PLY.
+// (float nx ny nz) and OBJ (vn lines, faces as v//vn) and round-trip exactly through PLY, as do the vertex
+// properties, which only PLY writes. Refused: a normal or property array whose length does not match the
+// vertices, a property name that is empty, holds a blank, repeats or is one of x y z nx ny nz.
 IoStatus write_mesh(const std::string& path, const MeshData& mesh, MeshFormat format);
 
 // As write_mesh, with the format chosen by the extension of `path`.

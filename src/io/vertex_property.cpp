@@ -1,5 +1,7 @@
 // Per-vertex values of any PLY type, stored at their own size (see VertexProperty in mesh_io.h).
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "io/mesh_io.h"
 
@@ -13,11 +15,28 @@ double load(const unsigned char* at) {
     return static_cast<double>(value);
 }
 
+// Appends `value` as a Number when it is one: a whole number in the integer type's range.
 template <class Number>
-void store(std::vector<unsigned char>& bytes, double value) {
+bool store(std::vector<unsigned char>& bytes, double value) {
+    const bool fits = value >= static_cast<double>(std::numeric_limits<Number>::min()) &&
+                      value <= static_cast<double>(std::numeric_limits<Number>::max()) && value == std::trunc(value);
+    if (!fits) return false;
     const Number narrow = static_cast<Number>(value);
     const auto* raw = reinterpret_cast<const unsigned char*>(&narrow);
     bytes.insert(bytes.end(), raw, raw + sizeof narrow);
+    return true;
+}
+
+template <class Float>
+bool store_float(std::vector<unsigned char>& bytes, double value) {
+    // A double beyond the float's range has no nearest float: it becomes an infinity of its sign.
+    const double largest = std::numeric_limits<Float>::max();
+    const Float narrow = value > largest ? std::numeric_limits<Float>::infinity()
+                         : value < -largest ? -std::numeric_limits<Float>::infinity()
+                                            : static_cast<Float>(value);
+    const auto* raw = reinterpret_cast<const unsigned char*>(&narrow);
+    bytes.insert(bytes.end(), raw, raw + sizeof narrow);
+    return true;
 }
 
 } // namespace
@@ -51,7 +70,7 @@ double VertexProperty::value(size_t vertex) const {
     return 0.0;
 }
 
-void VertexProperty::append(double value) {
+bool VertexProperty::append(double value) {
     switch (type) {
     case ValueType::int8: return store<int8_t>(bytes, value);
     case ValueType::uint8: return store<uint8_t>(bytes, value);
@@ -59,9 +78,10 @@ void VertexProperty::append(double value) {
     case ValueType::uint16: return store<uint16_t>(bytes, value);
     case ValueType::int32: return store<int32_t>(bytes, value);
     case ValueType::uint32: return store<uint32_t>(bytes, value);
-    case ValueType::float32: return store<float>(bytes, value);
-    case ValueType::float64: return store<double>(bytes, value);
+    case ValueType::float32: return store_float<float>(bytes, value);
+    case ValueType::float64: return store_float<double>(bytes, value);
     }
+    return false;
 }
 
 } // namespace dbrg::io
