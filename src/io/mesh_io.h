@@ -17,7 +17,8 @@
 
 namespace dbrg::io {
 
-// The type of a per-vertex value, as PLY has them (char, uchar, short, ushort, int, uint, float, double).
+// The type of a per-vertex value, as PLY has them (char, uchar, short, ushort, int, uint, float, double),
+// in the order of dbrg_io_value_type's values (dbrg_io.h), which io_api.cpp relies on.
 enum class ValueType : uint8_t { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
 
 // Bytes per value of `type`.
