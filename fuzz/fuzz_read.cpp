@@ -1,6 +1,6 @@
-// Fuzz target: one mesh reader (the build names it with -DFUZZ_READ_FORMAT=ply_binary, obj, off, xyz or
-// stl) on arbitrary bytes. A failed read leaves the mesh empty and says why; a successful one gives whole
-// triangles over existing vertices that the mesh report and the surface distance accept; whatever the
+// Fuzz target: one mesh reader (the build names it with -DFUZZ_READ_FORMAT=ply_binary, obj, off, xyz, stl
+// or las) on arbitrary bytes. A failed read leaves the mesh empty and says why; a successful one gives whole
+// triangles over existing vertices and one value per vertex in each vertex property that the mesh report and the surface distance accept; whatever the
 // header claims, the reader holds no more than a small multiple of the input's size; and the bytes read
 // in small pieces, as from a file or a pipe, give the same mesh and message.
 #include <stddef.h>
@@ -32,7 +32,13 @@ size_t memory_allowance(size_t input_size) { return 64 * input_size + (64 << 10)
 bool same_mesh(const io::MeshData& a, const io::MeshData& b) {
     const bool same_positions = a.positions.size() == b.positions.size() &&
         (a.positions.empty() || std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(double)) == 0);
-    return same_positions && a.triangles == b.triangles && a.has_faces == b.has_faces && a.non_finite_at == b.non_finite_at;
+    bool same_properties = a.properties.size() == b.properties.size();
+    for (size_t i = 0; same_properties && i < a.properties.size(); ++i) {
+        same_properties = a.properties[i].name == b.properties[i].name && a.properties[i].type == b.properties[i].type &&
+                          a.properties[i].bytes == b.properties[i].bytes;
+    }
+    return same_positions && same_properties && a.triangles == b.triangles && a.has_faces == b.has_faces &&
+           a.non_finite_at == b.non_finite_at;
 }
 
 // Reads the input through a source that hands it out in pieces of 1 to 13 bytes (sizes set by the input
@@ -75,10 +81,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     if (!status) {
         FUZZ_CHECK(!status.message.empty());
-        FUZZ_CHECK(mesh.positions.empty() && mesh.triangles.empty() && !mesh.has_faces);
+        FUZZ_CHECK(mesh.positions.empty() && mesh.triangles.empty() && mesh.properties.empty() && !mesh.has_faces);
         return 0;
     }
     FUZZ_CHECK(mesh.positions.size() % 3 == 0 && mesh.triangles.size() % 3 == 0);
+    for (const io::VertexProperty& property : mesh.properties) FUZZ_CHECK(property.size() == mesh.vertex_count());
     for (uint32_t v : mesh.triangles) FUZZ_CHECK(v < mesh.vertex_count());
     if (!mesh.triangles.empty()) FUZZ_CHECK(mesh.has_faces);
 

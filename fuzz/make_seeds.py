@@ -204,13 +204,65 @@ PLY_REPEATED_PROPERTY = (b"ply\nformat ascii 1.0\nelement vertex 0\nproperty flo
                          b"element junk 0\n" + b"".join(b"property uchar p%d\n" % i for i in range(300)) +
                          b"property uchar p150\nend_header\n")
 
+
+def las(minor, fmt, points, count=None, legacy=None, record_length=None, offset_to_points=None, vlr=b"", padding=0):
+    """A LAS file (ASPRS LAS 1.4 R15 layout): header, `vlr` bytes, then records of X Y Z intensity, the
+    format's other fields zero and colour (points are (x, y, z, intensity, red, green, blue) integers)."""
+    header_size = 227 if minor <= 2 else 235 if minor == 3 else 375
+    extended = fmt >= 6
+    colour = fmt in (2, 3, 5, 7, 8, 10)
+
+    def record(p):
+        out = struct.pack("<3iH", *p[:4]) + bytes(8 if extended else 6)
+        out += struct.pack("<d", 1.5) if fmt in (1, 3, 4, 5) else b""
+        out += struct.pack("<3H", *p[4:7]) if colour else b""
+        out += bytes(2) if fmt in (8, 10) else b""
+        out += bytes(29) if fmt in (4, 5, 9, 10) else b""
+        return out + bytes(padding)
+
+    records = b"".join(record(p) for p in points)
+    count = len(points) if count is None else count
+    legacy = (0 if minor >= 4 and extended else count) if legacy is None else legacy
+    length = len(record((0,) * 7)) if record_length is None else record_length
+    start = header_size + len(vlr) if offset_to_points is None else offset_to_points
+    out = b"LASF" + bytes(4 + 16) + bytes([1, minor]) + b"s" * 32 + b"g" * 32 + struct.pack("<HH", 1, 2024)
+    out += struct.pack("<HIIBHI", header_size, start, 1 if vlr else 0, fmt, length, legacy) + bytes(20)
+    out += struct.pack("<3d", 0.01, 0.01, 0.001) + struct.pack("<3d", 1000.0, -2000.0, 0.0) + bytes(48)
+    out += bytes(8) if minor >= 3 else b""
+    out += bytes(12) + struct.pack("<Q", count) + bytes(120) if minor >= 4 else b""
+    assert len(out) == header_size
+    return out + vlr + records
+
+
+LAS_POINTS = [(0, 0, 0, 0, 0, 0, 0), (100, -200, 3000, 65535, 65535, 0, 256), (2**31 - 1, -2**31, 7, 17, 1, 2, 3),
+              (-5, 5, -5, 300, 40000, 50000, 60000)]
+LAS_SEEDS = {f"v1{minor}_format{fmt}": las(minor, fmt, LAS_POINTS) for minor in (2, 3, 4)
+             for fmt in range(11 if minor == 4 else 6)}
+LAS_SEEDS.update({
+    "vlr_and_extra_bytes": las(4, 7, LAS_POINTS, vlr=b"v" * 154, padding=3),
+    "legacy_count_differs": las(4, 1, LAS_POINTS, legacy=3),
+    "lying_count": las(4, 6, LAS_POINTS, count=4294967294),
+    "short_record_length": las(2, 2, LAS_POINTS, record_length=25),
+    "offset_past_end": las(3, 0, LAS_POINTS, offset_to_points=4000000000),
+    "truncated": las(2, 3, LAS_POINTS)[:-5],
+    "laz": las(2, 0x83, []),
+})
+
+
+# Vertex properties of every type, carried to the mesh with their names and types.
+PLY_PROPERTIES = (b"ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty char c\nproperty float y\n"
+                  b"property float z\nproperty uchar red\nproperty short s\nproperty ushort intensity\nproperty int i\n"
+                  b"property uint u\nproperty float confidence\nproperty double quality\nend_header\n"
+                  b"0 -128 0 0 255 -32768 65535 -2147483648 4294967295 0.5 1e-300\n1 127 1 1 0 32767 0 2147483647 0 inf -0\n")
+
 READERS = {
     "fuzz_read_ply": {"ascii": PLY_ASCII, "little_endian": ply_binary("<"), "big_endian": ply_binary(">"),
                       "strips": PLY_STRIPS, "truncated": ply_binary("<")[:-7],
                       "lying_count": PLY_ASCII.replace(b"element vertex 4", b"element vertex 4000000000"),
                       "zero_bytes": bytes(1024), "header_then_zero_bytes": b"ply\nformat ascii 1.0\n" + bytes(256),
                       "ascii_turns_binary": PLY_ASCII[:PLY_ASCII.index(b"1 0 0 0")] + BINARY_TAIL,
-                      "repeated_property": PLY_REPEATED_PROPERTY},
+                      "repeated_property": PLY_REPEATED_PROPERTY,
+                      "vertex_properties": PLY_PROPERTIES, "vertex_property_out_of_range": PLY_PROPERTIES.replace(b" 65535 ", b" 65536 ")},
     "fuzz_read_obj": {"tetrahedron": b"# comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1/1 4/1 3/1\nf 2//1 3//1 4//1\n",
                       "negative_indices": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0 1.0\nvt 0 0\nvn 0 0 1\nf -4 -3 -1 -2\ng part\nusemtl m\n",
                       "bad_index": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n",
@@ -233,6 +285,7 @@ READERS = {
                           for a, b, c in [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((1, 0, 0), (1, 1, 0), (0, 1, 0))]),
                       "lying_count": bytes(80) + struct.pack("<I", 1000000),
                       "ascii_turns_binary": b"solid t\nfacet normal 0 0 1\nouter loop\n" + BINARY_TAIL},
+    "fuzz_read_las": LAS_SEEDS,
 }
 
 # fuzz_roundtrip: triangle count (4 bytes, modulo 301), three 4-byte corners per triangle, then points.

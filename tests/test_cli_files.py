@@ -156,6 +156,12 @@ class RefusedOutputs(Folder):
         self.assertIn("without the triangles", err)
         self.assertFalse(os.path.exists(self.path("x.xyz")))
 
+    def test_las_is_not_written(self):
+        code, _, err = self.demo(self.path("x.las"))
+        self.assertEqual(code, 2)
+        self.assertIn("LAS files are read, not written", err)
+        self.assertFalse(os.path.exists(self.path("x.las")))
+
     def test_output_that_is_the_input(self):
         source = self.path("in.ply")
         self.assertEqual(self.demo(source)[0], 0)
@@ -257,7 +263,7 @@ class Messages(Folder):
     def test_help_lists_every_input_format(self):
         code, out, _ = run("reconstruct", "--help")
         self.assertEqual(code, 0)
-        for extension in (".ply", ".obj", ".off", ".stl", ".xyz", ".pts"):
+        for extension in (".ply", ".obj", ".off", ".stl", ".xyz", ".pts", ".las"):
             self.assertIn(extension, out.split("writes it")[0])
 
 
@@ -276,6 +282,46 @@ def read_obj(path):
                 corners = [corner.split("//") for corner in words[1:]]
                 faces.append([(int(c[0]) - 1, int(c[1]) - 1 if len(c) > 1 else None) for c in corners])
     return positions, normals, faces
+
+
+def sphere_points(count):
+    """`count` points on the unit sphere (golden-angle spiral)."""
+    points = []
+    for i in range(count):
+        z = 1 - 2 * (i + 0.5) / count
+        r, angle = math.sqrt(1 - z * z), math.pi * (1 + 5 ** 0.5) * i
+        points.append((r * math.cos(angle), r * math.sin(angle), z))
+    return points
+
+
+def write_las(path, records, scale=0.001, offset=(1000.0, 2000.0, 0.0)):
+    """A LAS 1.2 file of point format 2 (ASPRS layout): records are (X, Y, Z, intensity, red, green, blue)
+    integers; positions are X * scale + offset."""
+    header = b"LASF" + bytes(20) + bytes([1, 2]) + bytes(64) + struct.pack("<HH", 1, 2024)
+    header += struct.pack("<HIIBHI", 227, 227, 0, 2, 26, len(records)) + bytes(20)
+    header += struct.pack("<3d", scale, scale, scale) + struct.pack("<3d", *offset) + bytes(48)
+    assert len(header) == 227
+    with open(path, "wb") as f:
+        f.write(header + b"".join(struct.pack("<3iH6x3H", *r) for r in records))
+
+
+def read_binary_ply_vertices(path):
+    """(property names, one tuple of values per vertex) of a binary little-endian PLY's vertex element."""
+    types = {"char": "b", "uchar": "B", "short": "h", "ushort": "H", "int": "i", "uint": "I", "float": "f", "double": "d"}
+    with open(path, "rb") as f:
+        data = f.read()
+    header, body = data.split(b"end_header\n", 1)
+    names, codes, count, in_vertex = [], "", 0, False
+    for line in header.decode().splitlines():
+        words = line.split()
+        if words[0] == "element":
+            in_vertex = words[1] == "vertex"
+            count = int(words[2]) if in_vertex else count
+        elif words[0] == "property" and in_vertex:
+            names.append(words[2])
+            codes += types[words[1]]
+    record = struct.Struct("<" + codes)
+    return names, [record.unpack_from(body, i * record.size) for i in range(count)]
 
 
 def ply_header(path):
@@ -328,6 +374,61 @@ class ViewerOutput(Folder):
         # The kept vertices are in their input order.
         order = [all_positions.index(p) for p in positions]
         self.assertEqual(order, sorted(order))
+
+    def test_las_input(self):
+        scale, offset = 0.001, (1000.0, 2000.0, 0.0)
+        records = [(round(x * 1000), round(y * 1000), round(z * 1000), 7 * i, i, 2 * i, 3 * i)
+                   for i, (x, y, z) in enumerate(sphere_points(600))]
+        write_las(self.path("scan.las"), records, scale, offset)
+        code, _, err = run("reconstruct", self.path("scan.las"), "-q", "-o", self.path("out.obj"))
+        self.assertEqual(code, 0, err)
+        positions, _, faces = read_obj(self.path("out.obj"))
+        self.assertEqual(positions, [tuple(r[k] * scale + offset[k] for k in range(3)) for r in records])
+        self.assertGreater(len(faces), len(records))
+
+    def test_colours_and_other_properties_are_carried(self):
+        # Three points inside the sphere, which the surface leaves out.
+        points = sphere_points(700) + [(0.0, 0.0, 0.0), (0.1, 0.05, 0.02), (0.3, -0.2, 0.1)]
+        colour = lambda i: (i % 256, (7 * i) % 256, (13 * i) % 256, 255 - i % 256)
+        rows = [f"{x!r} {y!r} {z!r} {' '.join(map(str, colour(i)))} 0 0 1 {i / 3!r} {i * 11}"
+                for i, (x, y, z) in enumerate(points)]
+        source = self.path("coloured.ply")
+        with open(source, "w") as f:
+            f.write(f"ply\nformat ascii 1.0\nelement vertex {len(points)}\nproperty double x\nproperty double y\n"
+                    "property double z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                    "property uchar alpha\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                    "property double confidence\nproperty int label\nend_header\n" + "\n".join(rows) + "\n")
+        by_position = {p: i for i, p in enumerate(points)}
+        for extra in ((), ("--drop-unused",)):
+            code, _, err = run("reconstruct", source, "-q", "-o", self.path("out.ply"), *extra)
+            self.assertEqual(code, 0, err)
+            names, vertices = read_binary_ply_vertices(self.path("out.ply"))
+            self.assertEqual(names, ["x", "y", "z", "nx", "ny", "nz", "red", "green", "blue", "alpha", "confidence", "label"])
+            self.assertIn("property uchar red", ply_header(self.path("out.ply")))
+            if extra:
+                self.assertLess(len(vertices), len(points))
+            else:
+                self.assertEqual(len(vertices), len(points))
+            for vertex in vertices:
+                i = by_position[vertex[:3]]
+                self.assertEqual(vertex[6:10], colour(i))
+                self.assertEqual(vertex[10:], (i / 3, i * 11))
+                # The surface's normal, not the input's (0, 0, 1): outward on the sphere, none off it.
+                if i < 700:
+                    self.assertGreater(sum(vertex[k] * vertex[3 + k] for k in range(3)), 0.0)
+                else:
+                    self.assertEqual(vertex[3:6], (0.0, 0.0, 0.0))
+
+    def test_las_intensity_and_colour_are_carried(self):
+        records = [(round(x * 1000), round(y * 1000), round(z * 1000), 7 * i, i, 2 * i, 3 * i)
+                   for i, (x, y, z) in enumerate(sphere_points(600))]
+        write_las(self.path("scan.las"), records)
+        code, _, err = run("reconstruct", self.path("scan.las"), "-q", "-o", self.path("out.ply"))
+        self.assertEqual(code, 0, err)
+        names, vertices = read_binary_ply_vertices(self.path("out.ply"))
+        self.assertEqual(names[6:], ["intensity", "red", "green", "blue"])
+        self.assertIn("property ushort intensity", ply_header(self.path("out.ply")))
+        self.assertEqual([v[6:] for v in vertices], [r[3:] for r in records])
 
     def test_float_input_gives_float_output(self):
         code, _, err = run("reconstruct", "--demo", "--demo-shape", "sphere", "--demo-points", "800", "-q",

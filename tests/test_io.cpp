@@ -40,9 +40,17 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
+bool same_properties(const std::vector<VertexProperty>& a, const std::vector<VertexProperty>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (a[i].name != b[i].name || a[i].type != b[i].type || a[i].bytes != b[i].bytes) return false;
+    }
+    return true;
+}
+
 bool same_mesh(const MeshData& a, const MeshData& b) {
     return same_bits(a.positions, b.positions) && a.triangles == b.triangles && a.normals == b.normals &&
-           a.has_faces == b.has_faces && a.non_finite_at == b.non_finite_at;
+           same_properties(a.properties, b.properties) && a.has_faces == b.has_faces && a.non_finite_at == b.non_finite_at;
 }
 
 // Reads `bytes` through a source that hands them out 1 to 7 at a time into a 16-byte first buffer, as
@@ -1140,4 +1148,394 @@ TEST_CASE("reading a one-million-point binary PLY takes well under a second") {
         CHECK(same_bits(back.positions, cloud.positions));
         if (!SANITIZED) CHECK(seconds < 0.5);
     }
+}
+
+
+// LAS files laid out field by field as the ASPRS specification (1.4 R15) gives them.
+namespace {
+
+struct LasPoint {
+    int32_t x, y, z;
+    uint16_t intensity, red, green, blue;
+};
+
+struct LasFile {
+    unsigned minor = 2;
+    unsigned format = 0;
+    double scale[3] = {0.01, 0.01, 0.01};
+    double offset[3] = {0, 0, 0};
+    std::vector<LasPoint> points;
+    size_t record_padding = 0;      // extra bytes after each record
+    size_t vlr_bytes = 0;           // bytes between the header and the points
+    size_t header_padding = 0;      // bytes after the version's header, counted in the header size
+    std::optional<uint64_t> legacy_count;  // default: the count, or 0 in 1.4 formats 6 to 10
+    std::optional<uint64_t> count;         // default: the number of points
+    std::optional<uint64_t> record_length; // default: the format's length plus record_padding
+    std::optional<uint64_t> point_data_offset;
+};
+
+bool format_has_gps_time(unsigned format) { return format == 1 || format >= 3; }
+bool format_has_colour(unsigned format) { return format == 2 || format == 3 || format == 5 || format == 7 || format == 8 || format == 10; }
+bool format_has_waveform(unsigned format) { return format == 4 || format == 5 || format == 9 || format == 10; }
+
+// One record: X Y Z intensity, the format's other fields zero, colour where the format has it.
+std::string las_record(const LasFile& file, const LasPoint& point) {
+    ByteWriter w;
+    w.put(point.x).put(point.y).put(point.z).put(point.intensity);
+    const bool extended = file.format >= 6;
+    // Returns, flags, classification, user data, scan angle, point source id.
+    w.bytes.append(extended ? 8 : 6, '\x05');
+    if (format_has_gps_time(file.format)) w.put(1234.5);
+    if (format_has_colour(file.format)) w.put(point.red).put(point.green).put(point.blue);
+    if (file.format == 8 || file.format == 10) w.put(uint16_t(777));  // near infrared
+    if (format_has_waveform(file.format)) w.bytes.append(29, '\x07');
+    w.bytes.append(file.record_padding, '\x09');
+    return w.bytes;
+}
+
+std::string las_bytes(const LasFile& file) {
+    const std::string first_record = las_record(file, file.points.empty() ? LasPoint{} : file.points[0]);
+    const uint64_t header_size = (file.minor <= 2 ? 227 : file.minor == 3 ? 235 : 375) + file.header_padding;
+    const uint64_t count = file.count.value_or(file.points.size());
+    const uint64_t legacy = file.legacy_count.value_or(file.minor >= 4 && file.format >= 6 ? 0 : count);
+    ByteWriter w;
+    w.text("LASF").put(uint16_t(0)).put(uint16_t(0));
+    w.bytes.append(16, '\0');  // project GUID
+    w.put(uint8_t(1)).put(uint8_t(file.minor));
+    w.bytes.append(32, 's');   // system identifier
+    w.bytes.append(32, 'g');   // generating software
+    w.put(uint16_t(42)).put(uint16_t(2024));
+    w.put(uint16_t(header_size));
+    w.put(uint32_t(file.point_data_offset.value_or(header_size + file.vlr_bytes)));
+    w.put(uint32_t(file.vlr_bytes > 0 ? 1 : 0));
+    w.put(uint8_t(file.format));
+    w.put(uint16_t(file.record_length.value_or(first_record.size())));
+    w.put(uint32_t(legacy));
+    for (int r = 0; r < 5; ++r) w.put(uint32_t(0));
+    for (double v : file.scale) w.put(v);
+    for (double v : file.offset) w.put(v);
+    for (int k = 0; k < 6; ++k) w.put(0.0);  // bounds
+    if (file.minor >= 3) w.put(uint64_t(0));  // waveform data start
+    if (file.minor >= 4) {
+        w.put(uint64_t(0)).put(uint32_t(0));  // extended records: start, count
+        w.put(count);
+        for (int r = 0; r < 15; ++r) w.put(uint64_t(0));
+    }
+    REQUIRE(w.bytes.size() == header_size - file.header_padding);
+    w.bytes.append(file.header_padding, 'h');
+    w.bytes.append(file.vlr_bytes, 'v');
+    for (const LasPoint& point : file.points) w.bytes += las_record(file, point);
+    return w.bytes;
+}
+
+const VertexProperty* find_property(const MeshData& mesh, const std::string& name) {
+    for (const VertexProperty& property : mesh.properties) {
+        if (property.name == name) return &property;
+    }
+    return nullptr;
+}
+
+std::vector<LasPoint> assorted_las_points() {
+    return {{0, 0, 0, 0, 0, 0, 0},
+            {1, -2, 3, 65535, 65535, 0, 256},
+            {std::numeric_limits<int32_t>::max(), std::numeric_limits<int32_t>::min(), 123456789, 17, 1, 2, 3},
+            {-98765, 4321, -1, 300, 40000, 50000, 60000}};
+}
+
+// Reads `file` and checks every point's coordinates (the integers times scale plus offset, exactly),
+// intensity and colour.
+void check_las_read_back(const LasFile& file) {
+    const MeshData mesh = read_ok(las_bytes(file), MeshFormat::las);
+    REQUIRE(mesh.vertex_count() == file.points.size());
+    CHECK(mesh.triangles.empty());
+    CHECK_FALSE(mesh.has_faces);
+    const VertexProperty* intensity = find_property(mesh, "intensity");
+    REQUIRE(intensity);
+    CHECK(intensity->type == ValueType::uint16);
+    const bool colour = format_has_colour(file.format);
+    CHECK(mesh.properties.size() == (colour ? 4u : 1u));
+    for (size_t i = 0; i < file.points.size(); ++i) {
+        const LasPoint& p = file.points[i];
+        const int32_t integers[3] = {p.x, p.y, p.z};
+        for (size_t k = 0; k < 3; ++k) CHECK(mesh.positions[3 * i + k] == double(integers[k]) * file.scale[k] + file.offset[k]);
+        CHECK(intensity->value(i) == p.intensity);
+        if (!colour) continue;
+        CHECK(find_property(mesh, "red")->value(i) == p.red);
+        CHECK(find_property(mesh, "green")->value(i) == p.green);
+        CHECK(find_property(mesh, "blue")->value(i) == p.blue);
+    }
+}
+
+} // namespace
+
+TEST_CASE("LAS 1.2 to 1.4, record formats 0 to 10: exact coordinates, intensity and colour") {
+    CHECK(format_from_path("scan.LAS") == MeshFormat::las);
+    for (unsigned minor = 2; minor <= 4; ++minor) {
+        // Formats 6 to 10 came with LAS 1.4.
+        for (unsigned format = 0; format <= (minor == 4 ? 10u : 5u); ++format) {
+            CAPTURE(minor);
+            CAPTURE(format);
+            LasFile file;
+            file.minor = minor;
+            file.format = format;
+            file.points = assorted_las_points();
+            file.scale[0] = 0.001, file.scale[1] = 0.25, file.scale[2] = 1e-7;
+            file.offset[0] = 500000.0, file.offset[1] = -4.5e6, file.offset[2] = 0.1;
+            check_las_read_back(file);
+            // Variable length records before the points, extra bytes in each record, a longer header.
+            file.vlr_bytes = 54 + 100;
+            file.record_padding = 3;
+            file.header_padding = 5;
+            check_las_read_back(file);
+        }
+    }
+}
+
+TEST_CASE("LAS 1.4 counts its points in 64 bits; the legacy count may be 0 or the same") {
+    LasFile file;
+    file.minor = 4;
+    file.format = 6;
+    file.points = assorted_las_points();
+    file.legacy_count = 0;
+    check_las_read_back(file);
+    file.format = 1;
+    file.legacy_count = file.points.size();
+    check_las_read_back(file);
+    file.legacy_count = 3;
+    check_rejected(las_bytes(file), MeshFormat::las, "LAS header: the legacy point count 3 differs from the point count 4");
+    // Before 1.4 the legacy count is the count.
+    file.minor = 3;
+    file.legacy_count = std::nullopt;
+    check_las_read_back(file);
+}
+
+TEST_CASE("LAS: no points, and what follows the points is read past") {
+    LasFile file;
+    file.format = 3;
+    CHECK(read_ok(las_bytes(file), MeshFormat::las).vertex_count() == 0);
+    file.points = assorted_las_points();
+    const MeshData mesh = read_ok(las_bytes(file) + "waveform data or extended records", MeshFormat::las);
+    CHECK(mesh.vertex_count() == 4);
+}
+
+TEST_CASE("LAZ is refused with a message saying to decompress it") {
+    LasFile file;
+    file.format = 3;
+    file.points = assorted_las_points();
+    std::string bytes = las_bytes(file);
+    bytes[104] = static_cast<char>(0x80 | 3);  // LASzip's mark on the record format
+    check_rejected(bytes, MeshFormat::las, "LAS header: the points are compressed (LAZ); decompress the file first, e.g. with 'laszip");
+    const std::string path = write_temp_file("scan.laz", las_bytes(file));
+    MeshData mesh;
+    const IoStatus status = read_mesh(path, mesh);
+    CHECK_FALSE(status.ok);
+    CHECK(status.message == path + ": LAZ files are compressed; decompress it to .las first, e.g. with 'laszip -i FILE.laz -o FILE.las'");
+    std::remove(path.c_str());
+}
+
+TEST_CASE("hostile LAS headers are refused with a message naming the problem") {
+    LasFile good;
+    good.minor = 4;
+    good.format = 2;
+    good.points = assorted_las_points();
+    const std::string valid = las_bytes(good);
+    check_rejected("", MeshFormat::las, "LAS header: the file does not begin with 'LASF'");
+    check_rejected("LASX" + valid.substr(4), MeshFormat::las, "does not begin with 'LASF'");
+    check_rejected(valid.substr(0, 100), MeshFormat::las, "LAS header: the file ends after 100 bytes, inside the 227-byte public header block");
+    check_rejected(valid.substr(0, 300), MeshFormat::las, "LAS header: the file ends after 300 bytes, inside the 375-byte LAS 1.4 header");
+    auto with = [&](auto change) {
+        LasFile file = good;
+        change(file);
+        return las_bytes(file);
+    };
+    std::string bytes = valid;
+    bytes[24] = 2;
+    check_rejected(bytes, MeshFormat::las, "LAS header: version 2.4 is not supported (1.0 to 1.4 are)");
+    bytes = valid;
+    bytes[104] = 11;
+    check_rejected(bytes, MeshFormat::las, "LAS header: unknown point data record format 11 (0 to 10 are read)");
+    bytes = valid;
+    bytes[94] = static_cast<char>(235 & 0xff), bytes[95] = 0;
+    check_rejected(bytes, MeshFormat::las, "LAS header: header size 235 is smaller than the 375 bytes of a LAS 1.4 header");
+    check_rejected(with([](LasFile& f) { f.record_length = 25; }), MeshFormat::las,
+                   "LAS header: point data record length 25 is smaller than the 26 bytes of format 2");
+    check_rejected(with([](LasFile& f) { f.point_data_offset = 300; }), MeshFormat::las,
+                   "LAS header: the offset to point data 300 lies inside the header (375 bytes)");
+    check_rejected(with([](LasFile& f) { f.point_data_offset = 4000000000u; }), MeshFormat::las,
+                   "LAS header: the offset to point data 4000000000 is past the end of the file (479 bytes)");
+    check_rejected(with([](LasFile& f) { f.count = 5; }), MeshFormat::las,
+                   "LAS header: the file declares 5 points of 26 bytes, more than the 104 bytes after the offset to point data hold");
+    check_rejected(with([](LasFile& f) { f.count = 4294967295u; }), MeshFormat::las,
+                   "LAS header: the file declares 4294967295 points; at most 4294967294 are supported");
+    check_rejected(with([](LasFile& f) { f.scale[1] = 0; }), MeshFormat::las, "LAS header: the y scale factor is not a finite non-zero number");
+    check_rejected(with([](LasFile& f) { f.offset[2] = std::numeric_limits<double>::infinity(); }), MeshFormat::las,
+                   "LAS header: the z offset is not finite");
+}
+
+TEST_CASE("a lying LAS count fails fast without allocating for it, and a truncated file names the record") {
+    LasFile file;
+    file.minor = 4;
+    file.format = 6;
+    file.points = assorted_las_points();
+    file.count = 4294967294u;
+    const auto start = std::chrono::steady_clock::now();
+    const std::string bytes = las_bytes(file);
+    check_rejected(bytes, MeshFormat::las, "LAS header: the file declares 4294967294 points of 30 bytes");
+    CHECK(seconds_since(start) < 1.0);
+    // Of unknown size (a pipe), the data runs out at the fifth record.
+    MeshData mesh;
+    const IoStatus status = read_in_pieces(bytes, MeshFormat::las, false, mesh);
+    CHECK(status.message == "LAS byte offset 495: the file ends in the middle of point record 4 (30 bytes expected, 0 left)");
+    CHECK(mesh.vertex_count() == 0);
+
+    file.count = std::nullopt;
+    const std::string valid = las_bytes(file);
+    check_rejected(valid.substr(0, valid.size() - 1), MeshFormat::las, "the file declares 4 points of 30 bytes, more than the 119 bytes");
+    for (size_t length = 0; length < valid.size(); ++length) {
+        MeshData out;
+        const IoStatus prefix = read_text(std::string_view(valid.data(), length), MeshFormat::las, out);
+        CHECK_FALSE(prefix.ok);
+        CHECK_FALSE(prefix.message.empty());
+    }
+}
+
+TEST_CASE("LAS coordinates past double's range are read and their place named") {
+    LasFile file;
+    file.points = {{1, 2, 3, 0, 0, 0, 0}, {std::numeric_limits<int32_t>::max(), 0, 0, 0, 0, 0, 0}};
+    file.scale[0] = 1e300;
+    const MeshData mesh = read_ok(las_bytes(file), MeshFormat::las);
+    CHECK(std::isinf(mesh.positions[3]));
+    CHECK(mesh.non_finite_at == "byte offset " + std::to_string(227 + 20));
+}
+
+TEST_CASE("LAS random corruptions are refused or read without crashing") {
+    LasFile file;
+    file.minor = 4;
+    file.format = 10;
+    file.points = assorted_las_points();
+    const std::string valid = las_bytes(file);
+    std::mt19937 random(2024);
+    for (int trial = 0; trial < 3000; ++trial) {
+        std::string corrupted = valid;
+        for (int e = 0; e < 1 + static_cast<int>(random() % 3); ++e) {
+            // Mostly the header, where the sizes and counts are.
+            const size_t at = random() % (trial % 2 ? 375 : corrupted.size());
+            corrupted[at] = static_cast<char>(random());
+        }
+        MeshData out;
+        const IoStatus status = read_text(corrupted, MeshFormat::las, out);
+        if (!status.ok) CHECK_FALSE(status.message.empty());
+        for (const VertexProperty& property : out.properties) CHECK(property.size() == out.vertex_count());
+    }
+}
+
+
+TEST_CASE("PLY vertex properties of every type are read with their names and types and written back the same") {
+    const std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty uchar red\nproperty float y\n"
+        "property uchar green\nproperty uchar blue\nproperty uchar alpha\nproperty float z\nproperty float nx\n"
+        "property float ny\nproperty float nz\nproperty char c\nproperty short s\nproperty ushort intensity\n"
+        "property int i\nproperty uint u\nproperty float confidence\nproperty double quality\n"
+        "property list uchar int ignored_list\n"
+        "element face 1\nproperty list uchar int vertex_indices\nproperty uchar face_red\nend_header\n"
+        "0 255 0 0 0 255 0 0 0 1 -128 -32768 65535 -2147483648 4294967295 0.5 0.1 2 7 7\n"
+        "1 1 0 2 3 4 0 0 1 0 127 32767 0 2147483647 0 -1e30 1e-300 0\n"
+        "0 10 1 20 30 40 0 1 0 0 0 0 1 0 1 inf -0 1 9\n"
+        "3 0 1 2 200\n";
+    const MeshData mesh = read_ok(ascii, MeshFormat::ply_ascii);
+    REQUIRE(mesh.vertex_count() == 3);
+    CHECK(mesh.positions == std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    CHECK(mesh.normals.size() == 9);
+    const std::vector<std::pair<std::string, ValueType>> expected = {
+        {"red", ValueType::uint8},      {"green", ValueType::uint8},   {"blue", ValueType::uint8},
+        {"alpha", ValueType::uint8},    {"c", ValueType::int8},        {"s", ValueType::int16},
+        {"intensity", ValueType::uint16}, {"i", ValueType::int32},     {"u", ValueType::uint32},
+        {"confidence", ValueType::float32}, {"quality", ValueType::float64}};
+    REQUIRE(mesh.properties.size() == expected.size());
+    for (size_t p = 0; p < expected.size(); ++p) {
+        CHECK(mesh.properties[p].name == expected[p].first);
+        CHECK(mesh.properties[p].type == expected[p].second);
+        CHECK(mesh.properties[p].size() == 3);
+    }
+    CHECK(mesh.properties[0].value(0) == 255);
+    CHECK(mesh.properties[1].value(1) == 2);
+    CHECK(mesh.properties[3].value(2) == 40);
+    CHECK(mesh.properties[4].value(0) == -128);
+    CHECK(mesh.properties[5].value(1) == 32767);
+    CHECK(mesh.properties[6].value(0) == 65535);
+    CHECK(mesh.properties[7].value(0) == -2147483648.0);
+    CHECK(mesh.properties[8].value(0) == 4294967295.0);
+    CHECK(mesh.properties[9].value(1) == -1e30f);
+    CHECK(std::isinf(mesh.properties[9].value(2)));
+    CHECK(mesh.properties[10].value(0) == 0.1);
+    CHECK(mesh.properties[10].value(1) == 1e-300);
+    CHECK(std::signbit(mesh.properties[10].value(2)));
+    // Every writer that has vertex properties (PLY, both encodings) gives them back bit for bit.
+    for (MeshFormat format : {MeshFormat::ply_binary, MeshFormat::ply_ascii}) {
+        CAPTURE(format_name(format));
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        const MeshData back = read_ok(bytes, format);
+        CHECK(same_properties(back.properties, mesh.properties));
+        CHECK(back.normals == mesh.normals);
+        CHECK(back.triangles == mesh.triangles);
+    }
+    // A big-endian file gives the same values.
+    ByteWriter big;
+    big.big_endian = true;
+    big.text("ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty double x\nproperty double y\nproperty double z\n"
+             "property ushort intensity\nproperty int i\nproperty float confidence\nend_header\n");
+    big.put(1.0).put(2.0).put(3.0).put(uint16_t(65534)).put(int32_t(-70000)).put(0.25f);
+    const MeshData from_big = read_ok(big.bytes, MeshFormat::ply_binary);
+    REQUIRE(from_big.properties.size() == 3);
+    CHECK(from_big.properties[0].value(0) == 65534);
+    CHECK(from_big.properties[1].value(0) == -70000);
+    CHECK(from_big.properties[2].value(0) == 0.25);
+}
+
+TEST_CASE("an ascii PLY value that its property's type cannot hold is refused, naming the vertex") {
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                             "property uchar red\nend_header\n0 0 0 255\n";
+    check_rejected(head + "1 1 1 256\n", MeshFormat::ply_ascii, "PLY line 10: vertex 1: property 'red' holds 256, not a uchar");
+    check_rejected(head + "1 1 1 1.5\n", MeshFormat::ply_ascii, "vertex 1: property 'red' holds 1.5, not a uchar");
+    check_rejected(head + "1 1 1 -1\n", MeshFormat::ply_ascii, "vertex 1: property 'red' holds -1, not a uchar");
+    check_rejected(head + "1 1 1 nan\n", MeshFormat::ply_ascii, "vertex 1: property 'red' holds nan, not a uchar");
+}
+
+TEST_CASE("writers refuse vertex properties that do not fit the mesh or a PLY header") {
+    MeshData mesh = float_exact_mesh();
+    std::string bytes;
+    auto refused = [&](VertexProperty property, const std::string& expected) {
+        MeshData with = mesh;
+        with.properties = {std::move(property)};
+        const IoStatus status = write_mesh_buffer(with, MeshFormat::ply_binary, bytes);
+        CHECK_FALSE(status.ok);
+        CHECK(status.message == expected);
+    };
+    VertexProperty red{"red", ValueType::uint8, {1, 2, 3, 4}};
+    REQUIRE(write_mesh_buffer(MeshData(mesh), MeshFormat::ply_binary, bytes).ok);
+    refused({"red", ValueType::uint8, {1, 2, 3}}, "vertex property 'red' has 3 values for 4 vertices");
+    refused({"red", ValueType::uint16, {1, 2, 3, 4}}, "vertex property 'red' has 2 values for 4 vertices");
+    refused({"", ValueType::uint8, {1, 2, 3, 4}}, "a vertex property has no name");
+    refused({"my red", ValueType::uint8, {1, 2, 3, 4}}, "vertex property 'my red': a name holds no blank or control character");
+    refused({"nx", ValueType::uint8, {1, 2, 3, 4}}, "vertex property 'nx': the name is taken");
+    MeshData twice = mesh;
+    twice.properties = {red, red};
+    CHECK(write_mesh_buffer(twice, MeshFormat::ply_binary, bytes).message == "vertex property 'red': the name is taken");
+    mesh.properties = {red};
+    CHECK(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).ok);
+}
+
+TEST_CASE("LAS intensity and colour become ushort PLY properties") {
+    LasFile file;
+    file.format = 3;
+    file.points = assorted_las_points();
+    const MeshData mesh = read_ok(las_bytes(file), MeshFormat::las);
+    std::string bytes;
+    REQUIRE(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).ok);
+    CHECK(bytes.find("property ushort intensity\nproperty ushort red\nproperty ushort green\nproperty ushort blue\n") !=
+          std::string::npos);
+    const MeshData back = read_ok(bytes, MeshFormat::ply_binary);
+    CHECK(same_bits(back.positions, mesh.positions));
+    CHECK(same_properties(back.properties, mesh.properties));
 }

@@ -206,6 +206,13 @@ TEST_CASE("dropping unused vertices keeps every triangle, renumbered by the retu
     for (uint32_t vertex : sphere.triangles) mesh.triangles.push_back(placed[vertex]);
     mesh.has_faces = true;
     mesh.normals = vertex_normals(mesh.positions, mesh.triangles);
+    // Properties of one, two and eight bytes, each vertex's value its own.
+    mesh.properties = {{"red", ValueType::uint8, {}}, {"intensity", ValueType::int16, {}}, {"confidence", ValueType::float64, {}}};
+    for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+        CHECK(mesh.properties[0].append(double(v % 256)));
+        CHECK(mesh.properties[1].append(-double(v)));
+        CHECK(mesh.properties[2].append(v / 7.0));
+    }
     const MeshData before = mesh;
 
     const std::vector<uint32_t> old_to_new = drop_unused_vertices(mesh);
@@ -227,7 +234,9 @@ TEST_CASE("dropping unused vertices keeps every triangle, renumbered by the retu
             CHECK(mesh.positions[3 * old_to_new[v] + k] == before.positions[3 * v + k]);
             CHECK(mesh.normals[3 * old_to_new[v] + k] == before.normals[3 * v + k]);
         }
+        for (size_t p = 0; p < mesh.properties.size(); ++p) CHECK(mesh.properties[p].value(old_to_new[v]) == before.properties[p].value(v));
     }
+    for (const VertexProperty& property : mesh.properties) CHECK(property.size() == mesh.vertex_count());
     // The compacted mesh has the same normals as computed from scratch: nothing depended on the dropped points.
     CHECK(vertex_normals(mesh.positions, mesh.triangles) == mesh.normals);
 }
@@ -235,9 +244,13 @@ TEST_CASE("dropping unused vertices keeps every triangle, renumbered by the retu
 TEST_CASE("dropping unused vertices of a mesh without triangles keeps none") {
     MeshData mesh;
     mesh.positions = {1, 2, 3, 4, 5, 6};
+    mesh.properties = {{"intensity", ValueType::uint16, {}}};
+    CHECK(mesh.properties[0].append(1));
+    CHECK(mesh.properties[0].append(2));
     const std::vector<uint32_t> old_to_new = drop_unused_vertices(mesh);
     CHECK(old_to_new == std::vector<uint32_t>{DROPPED_VERTEX, DROPPED_VERTEX});
     CHECK(mesh.positions.empty());
+    CHECK(mesh.properties[0].bytes.empty());
     MeshData empty;
     CHECK(drop_unused_vertices(empty).empty());
 }

@@ -16,8 +16,8 @@ namespace {
 const char* const DELAUNAY_USAGE =
     "usage: dbrg delaunay INPUT [--backend builtin|tetgen] [--threads N] [--stats-json FILE] [--tets FILE]\n"
     "\n"
-    "Computes the Delaunay tetrahedralization of the points of INPUT (.ply .obj .off .xyz .pts; only the\n"
-    "vertices are read) and prints a JSON report: points, unique_points, tetrahedra (finite ones), seconds\n"
+    "Computes the Delaunay tetrahedralization of the points of INPUT (.ply .obj .off .stl .xyz .pts .las;\n"
+    "only the vertices are read) and prints a JSON report: points, unique_points, tetrahedra (finite ones), seconds\n"
     "(the tetrahedralization alone, reading excluded), peak_rss_bytes.\n"
     "\n"
     "  --backend builtin|tetgen  the engine (default builtin; tetgen only in builds with -Dtetgen=enabled)\n"

@@ -26,9 +26,11 @@ const char* const RECONSTRUCT_USAGE =
     "       dbrg reconstruct --demo [--demo-shape NAME] [--demo-points N] -o OUTPUT [options]\n"
     "\n"
     "Reconstructs an oriented manifold triangle surface through the points of INPUT (.ply .obj .off .stl\n"
-    ".xyz .pts; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with\n"
+    ".xyz .pts .las; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with\n"
     "every input point as a vertex, in input order, and in .ply and .obj each vertex's normal (pointing\n"
-    "to the outside of closed surfaces). OUTPUT is replaced only once it is completely written.\n"
+    "to the outside of closed surfaces). A .ply OUTPUT also carries the input's other vertex properties\n"
+    "(colours, intensity, ...; LAS intensity and colour). OUTPUT is replaced only once it is completely\n"
+    "written.\n"
     "\n"
     "  -o, --output FILE        the mesh to write (required)\n"
     "  --demo                   use a generated sample instead of INPUT\n"
@@ -237,10 +239,11 @@ int run_reconstruct(int argc, char** argv) {
     if (!args.has("--output")) return report_error(EXIT_USAGE, "reconstruct: -o OUTPUT is required");
     const std::string output = args.value("--output");
     const std::optional<io::MeshFormat> format = io::format_from_path(output);
-    if (!format || *format == io::MeshFormat::xyz) {
-        return report_error(EXIT_USAGE, "reconstruct: " + (format ? "'" + output + "' would hold the points without the triangles"
-                                                                  : "cannot tell the format of '" + output + "'") +
-                                            " (use .ply .obj .off .stl)");
+    if (!format || *format == io::MeshFormat::xyz || *format == io::MeshFormat::las) {
+        const std::string problem = !format ? "cannot tell the format of '" + output + "'"
+                                    : *format == io::MeshFormat::las ? "LAS files are read, not written: '" + output + "'"
+                                                                     : "'" + output + "' would hold the points without the triangles";
+        return report_error(EXIT_USAGE, "reconstruct: " + problem + " (use .ply .obj .off .stl)");
     }
     dbrg_params params;
     Demo demo;
@@ -260,6 +263,8 @@ int run_reconstruct(int argc, char** argv) {
     } else {
         const io::IoStatus read = io::read_mesh(input, mesh);
         if (!read) return report_error(EXIT_FAILED, read.message);
+        // The surface's normals replace the input's; its other vertex properties go to the output as read.
+        mesh.normals.clear();
     }
     const double seconds_read = seconds_now() - start;
 

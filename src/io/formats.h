@@ -28,6 +28,7 @@ IoStatus read_obj(ByteSource& source, MeshData& out);
 IoStatus read_off(ByteSource& source, MeshData& out);
 IoStatus read_xyz(ByteSource& source, MeshData& out);
 IoStatus read_stl(ByteSource& source, MeshData& out);
+IoStatus read_las(ByteSource& source, MeshData& out);
 
 void write_ply(const MeshData& mesh, bool binary, std::string& out);
 void write_obj(const MeshData& mesh, std::string& out);
@@ -57,6 +58,28 @@ void append_values(std::string& out, const Number* values, size_t count) {
         const auto result = std::to_chars(text, text + sizeof text, values[k]);
         out.append(text, result.ptr);
     }
+}
+
+// A number as append_values writes it, for messages.
+inline std::string value_text(double value) {
+    std::string text;
+    append_values(text, &value, 1);
+    return text;
+}
+
+// The PLY name of a value type, as the writer declares it.
+inline const char* ply_type_name(ValueType type) {
+    switch (type) {
+    case ValueType::int8: return "char";
+    case ValueType::uint8: return "uchar";
+    case ValueType::int16: return "short";
+    case ValueType::uint16: return "ushort";
+    case ValueType::int32: return "int";
+    case ValueType::uint32: return "uint";
+    case ValueType::float32: return "float";
+    case ValueType::float64: return "double";
+    }
+    return "double";
 }
 
 inline void append_unsigned(std::string& out, uint64_t value) {

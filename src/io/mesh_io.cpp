@@ -8,6 +8,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <unordered_set>
 
 #include <sys/stat.h>
 
@@ -40,12 +41,33 @@ IoStatus without_exceptions(Action&& action) {
     }
 }
 
+// Each vertex property has a value per vertex and a name a PLY header can hold, used once and by none of
+// the values the writer writes itself.
+IoStatus check_properties(const MeshData& mesh) {
+    std::unordered_set<std::string> names = {"x", "y", "z", "nx", "ny", "nz"};
+    for (const VertexProperty& property : mesh.properties) {
+        const std::string quoted = "vertex property '" + property.name + "'";
+        if (property.name.empty()) return IoStatus::failure("a vertex property has no name");
+        for (char c : property.name) {
+            if (static_cast<unsigned char>(c) <= ' ' || c == '\x7f') return IoStatus::failure(quoted + ": a name holds no blank or control character");
+        }
+        if (!names.insert(property.name).second) return IoStatus::failure(quoted + ": the name is taken");
+        if (property.bytes.size() != mesh.vertex_count() * value_size(property.type)) {
+            return IoStatus::failure(quoted + " has " + std::to_string(property.bytes.size() / value_size(property.type)) +
+                                     " values for " + std::to_string(mesh.vertex_count()) + " vertices");
+        }
+    }
+    return IoStatus::success();
+}
+
 IoStatus check_mesh(const MeshData& mesh) {
     if (mesh.positions.size() % 3 != 0) return IoStatus::failure("the position array's length is not a multiple of 3");
     if (mesh.triangles.size() % 3 != 0) return IoStatus::failure("the triangle array's length is not a multiple of 3");
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
         return IoStatus::failure("the normal array's length differs from the position array's");
     }
+    IoStatus status = check_properties(mesh);
+    if (!status) return status;
     if (mesh.triangle_count() > std::numeric_limits<uint32_t>::max()) return IoStatus::failure("too many triangles to write");
     const size_t vertex_count = mesh.vertex_count();
     for (size_t i = 0; i < mesh.triangles.size(); ++i) {
@@ -66,6 +88,7 @@ std::optional<MeshFormat> format_from_path(std::string_view path) {
     if (extension == "off") return MeshFormat::off;
     if (extension == "xyz" || extension == "pts") return MeshFormat::xyz;
     if (extension == "stl") return MeshFormat::stl;
+    if (extension == "las") return MeshFormat::las;
     return std::nullopt;
 }
 
@@ -77,6 +100,7 @@ const char* format_name(MeshFormat format) {
     case MeshFormat::off: return "off";
     case MeshFormat::xyz: return "xyz";
     case MeshFormat::stl: return "stl";
+    case MeshFormat::las: return "las";
     }
     return "unknown";
 }
@@ -91,6 +115,7 @@ IoStatus read_mesh_source(ByteSource& source, MeshFormat format, MeshData& out) 
         case MeshFormat::off: return read_off(source, out);
         case MeshFormat::xyz: return read_xyz(source, out);
         case MeshFormat::stl: return read_stl(source, out);
+        case MeshFormat::las: return read_las(source, out);
         }
         return IoStatus::failure("unknown format");
     });
@@ -107,8 +132,12 @@ IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, Mesh
 
 IoStatus read_mesh(const std::string& path, MeshData& out) {
     out = MeshData();
+    if (lower_extension(path) == "laz") {
+        return IoStatus::failure(path + ": LAZ files are compressed; decompress it to .las first, e.g. with "
+                                        "'laszip -i FILE.laz -o FILE.las'");
+    }
     const std::optional<MeshFormat> format = format_from_path(path);
-    if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts or .stl)");
+    if (!format) return IoStatus::failure(path + ": unknown file type (expected .ply, .obj, .off, .xyz, .pts, .stl or .las)");
     IoStatus status = without_exceptions([&] {
         // Closed on every way out, a thrown bad_alloc included.
         const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
@@ -144,6 +173,7 @@ IoStatus read_mesh(const std::string& path, MeshData& out) {
 IoStatus write_mesh_buffer(const MeshData& mesh, MeshFormat format, std::string& out) {
     IoStatus status = check_mesh(mesh);
     if (!status) return status;
+    if (format == MeshFormat::las) return IoStatus::failure("LAS files are read, not written (use .ply .obj .off .stl or .xyz)");
     return without_exceptions([&] {
         switch (format) {
         case MeshFormat::ply_binary: write_ply(mesh, true, out); break;
@@ -152,6 +182,7 @@ IoStatus write_mesh_buffer(const MeshData& mesh, MeshFormat format, std::string&
         case MeshFormat::off: write_off(mesh, out); break;
         case MeshFormat::xyz: write_xyz(mesh, out); break;
         case MeshFormat::stl: write_stl(mesh, out); break;
+        case MeshFormat::las: break;
         }
         return IoStatus::success();
     });

@@ -1,10 +1,12 @@
-// PLY reader: ascii, binary little- and big-endian; vertex x/y/z and nx/ny/nz, face lists and triangle
-// strips.
+// PLY reader: ascii, binary little- and big-endian; vertex x/y/z, nx/ny/nz and every other scalar vertex
+// property (colours, intensity, confidence, ...), face lists and triangle strips.
 //
-// Every element and property other than vertex x/y/z and nx/ny/nz, face vertex_indices (or vertex_index)
-// and tristrips vertex_indices is read past and ignored. Counts in the header are checked against the bytes
-// that follow before anything is reserved, so a lying header fails at once instead of allocating; when
-// the input's size is unknown (a pipe), nothing is reserved for them and the data runs out as it is read.
+// The vertex element's other scalar properties become MeshData::properties with their names and types;
+// the rest (vertex lists, other elements, face properties besides vertex_indices or vertex_index, and
+// tristrips besides vertex_indices) is read past and ignored. Counts in the header are checked against the
+// bytes that follow before anything is reserved, so a lying header fails at once instead of allocating;
+// when the input's size is unknown (a pipe), nothing is reserved for them and the data runs out as it is
+// read.
 #include <cstring>
 #include <limits>
 #include <string>
@@ -17,23 +19,21 @@
 namespace dbrg::io {
 namespace {
 
-enum class PlyType : uint8_t { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
-
 struct PlyTypeName {
     const char* name;
-    PlyType type;
+    ValueType type;
 };
 
 const PlyTypeName PLY_TYPE_NAMES[] = {
-    {"char", PlyType::int8},     {"int8", PlyType::int8},       {"uchar", PlyType::uint8},
-    {"uint8", PlyType::uint8},   {"short", PlyType::int16},     {"int16", PlyType::int16},
-    {"ushort", PlyType::uint16}, {"uint16", PlyType::uint16},   {"int", PlyType::int32},
-    {"int32", PlyType::int32},   {"uint", PlyType::uint32},     {"uint32", PlyType::uint32},
-    {"float", PlyType::float32}, {"float32", PlyType::float32}, {"double", PlyType::float64},
-    {"float64", PlyType::float64},
+    {"char", ValueType::int8},     {"int8", ValueType::int8},       {"uchar", ValueType::uint8},
+    {"uint8", ValueType::uint8},   {"short", ValueType::int16},     {"int16", ValueType::int16},
+    {"ushort", ValueType::uint16}, {"uint16", ValueType::uint16},   {"int", ValueType::int32},
+    {"int32", ValueType::int32},   {"uint", ValueType::uint32},     {"uint32", ValueType::uint32},
+    {"float", ValueType::float32}, {"float32", ValueType::float32}, {"double", ValueType::float64},
+    {"float64", ValueType::float64},
 };
 
-bool find_type(std::string_view name, PlyType& type) {
+bool find_type(std::string_view name, ValueType& type) {
     for (const PlyTypeName& entry : PLY_TYPE_NAMES) {
         if (name == entry.name) {
             type = entry.type;
@@ -43,24 +43,11 @@ bool find_type(std::string_view name, PlyType& type) {
     return false;
 }
 
-size_t type_size(PlyType type) {
-    switch (type) {
-    case PlyType::int8:
-    case PlyType::uint8: return 1;
-    case PlyType::int16:
-    case PlyType::uint16: return 2;
-    case PlyType::int32:
-    case PlyType::uint32:
-    case PlyType::float32: return 4;
-    case PlyType::float64: return 8;
-    }
-    return 8;
-}
+bool is_integer(ValueType type) { return type != ValueType::float32 && type != ValueType::float64; }
 
-bool is_integer(PlyType type) { return type != PlyType::float32 && type != PlyType::float64; }
-
-// What the reader does with a property's values.
-enum class Role : uint8_t { skip, x, y, z, nx, ny, nz, corners };
+// What the reader does with a property's values: skip them, fill a vertex value, take them as corner
+// indices, or carry them as a vertex property.
+enum class Role : uint8_t { skip, x, y, z, nx, ny, nz, corners, carry };
 
 // The vertex values a Role from x to nz fills, in that order.
 const size_t VERTEX_VALUES = 6;
@@ -68,10 +55,11 @@ const char* const VERTEX_VALUE_NAMES[VERTEX_VALUES] = {"x", "y", "z", "nx", "ny"
 
 struct Property {
     std::string name;
-    PlyType type = PlyType::float32;  // of the value, or of each list item
+    ValueType type = ValueType::float32;  // of the value, or of each list item
     bool is_list = false;
-    PlyType count_type = PlyType::uint8;
+    ValueType count_type = ValueType::uint8;
     Role role = Role::skip;
+    size_t carried = 0;  // Role::carry: its index in MeshData::properties
 };
 
 enum class ElementKind : uint8_t { other, vertex, face, tristrips };
@@ -119,6 +107,7 @@ IoStatus assign_role(const Element& element, const std::unordered_set<std::strin
         property.role = static_cast<Role>(static_cast<int>(Role::x) + k);
     }
     const bool corner_name = name == "vertex_indices" || (element.kind == ElementKind::face && name == "vertex_index");
+    if (element.kind == ElementKind::vertex && !property.is_list && property.role == Role::skip) property.role = Role::carry;
     if ((element.kind == ElementKind::face || element.kind == ElementKind::tristrips) && corner_name) {
         if (!property.is_list) return header_error(line, "'" + name + "' of element '" + element.name + "' is not a list");
         if (!is_integer(property.type)) return header_error(line, "the vertex indices of '" + element.name + "' are not integers");
@@ -244,21 +233,21 @@ class BinarySource {
 public:
     BinarySource(ByteSource& source, bool big_endian) : source_(source), big_endian_(big_endian) {}
 
-    bool read_number(PlyType type, double& value) {
+    bool read_number(ValueType type, double& value) {
         if (!take(type)) return false;
         value = decode_number(type);
         return true;
     }
-    bool read_integer(PlyType type, int64_t& value) {
+    bool read_integer(ValueType type, int64_t& value) {
         if (!take(type)) return false;
         value = static_cast<int64_t>(decode_number(type));
         return true;
     }
-    bool skip(PlyType type) { return take(type); }
+    bool skip(ValueType type) { return take(type); }
     // place() stays at the list's count, or moves to the first item when they run out.
-    bool skip_list_items(PlyType type, uint64_t count) {
+    bool skip_list_items(ValueType type, uint64_t count) {
         const uint64_t start = source_.offset();
-        const uint64_t wanted = count * type_size(type);  // a list count has at most 32 bits: no overflow
+        const uint64_t wanted = count * value_size(type);  // a list count has at most 32 bits: no overflow
         if (source_.skip(wanted)) {
             taken_ += wanted;
             return true;
@@ -272,9 +261,9 @@ public:
         const std::optional<uint64_t> left = source_.bytes_left();
         return min_bytes == 0 || !left || count <= *left / min_bytes;
     }
-    uint64_t list_limit(PlyType item_type) const {
+    uint64_t list_limit(ValueType item_type) const {
         const std::optional<uint64_t> left = source_.bytes_left();
-        return left ? *left / type_size(item_type) : std::numeric_limits<uint64_t>::max();
+        return left ? *left / value_size(item_type) : std::numeric_limits<uint64_t>::max();
     }
     bool size_known() const { return source_.size_known(); }
     // The offset of the value read last (or of the one that ran out).
@@ -282,8 +271,8 @@ public:
     const std::string& error() const { return error_; }
 
 private:
-    bool take(PlyType type) {
-        const size_t size = type_size(type);
+    bool take(ValueType type) {
+        const size_t size = value_size(type);
         if (!source_.ensure(size)) {
             taken_ = 0;
             return fail_truncated(size, source_.window().size());
@@ -302,22 +291,22 @@ private:
         for (size_t i = 0; i < size; ++i) bits |= uint64_t(value_[big_endian_ ? size - 1 - i : i]) << (8 * i);
         return bits;
     }
-    double decode_number(PlyType type) const {
-        const uint64_t bits = load_bits(type_size(type));
+    double decode_number(ValueType type) const {
+        const uint64_t bits = load_bits(value_size(type));
         switch (type) {
-        case PlyType::int8: return static_cast<int8_t>(static_cast<uint8_t>(bits));
-        case PlyType::uint8: return static_cast<uint8_t>(bits);
-        case PlyType::int16: return static_cast<int16_t>(static_cast<uint16_t>(bits));
-        case PlyType::uint16: return static_cast<uint16_t>(bits);
-        case PlyType::int32: return static_cast<int32_t>(static_cast<uint32_t>(bits));
-        case PlyType::uint32: return static_cast<uint32_t>(bits);
-        case PlyType::float32: {
+        case ValueType::int8: return static_cast<int8_t>(static_cast<uint8_t>(bits));
+        case ValueType::uint8: return static_cast<uint8_t>(bits);
+        case ValueType::int16: return static_cast<int16_t>(static_cast<uint16_t>(bits));
+        case ValueType::uint16: return static_cast<uint16_t>(bits);
+        case ValueType::int32: return static_cast<int32_t>(static_cast<uint32_t>(bits));
+        case ValueType::uint32: return static_cast<uint32_t>(bits);
+        case ValueType::float32: {
             const uint32_t narrow = static_cast<uint32_t>(bits);
             float value;
             std::memcpy(&value, &narrow, sizeof value);
             return value;
         }
-        case PlyType::float64: {
+        case ValueType::float64: {
             double value;
             std::memcpy(&value, &bits, sizeof value);
             return value;
@@ -338,23 +327,23 @@ class AsciiSource {
 public:
     AsciiSource(ByteSource& source, size_t header_lines) : tokens_(source), header_lines_(header_lines) {}
 
-    bool read_number(PlyType, double& value) {
+    bool read_number(ValueType, double& value) {
         std::string_view token;
         if (!next(token)) return false;
         if (!parse_double(token, value)) return fail("expected a number, found " + quote_token(token));
         return true;
     }
-    bool read_integer(PlyType, int64_t& value) {
+    bool read_integer(ValueType, int64_t& value) {
         std::string_view token;
         if (!next(token)) return false;
         if (!parse_int64(token, value)) return fail("expected an integer, found " + quote_token(token));
         return true;
     }
-    bool skip(PlyType) {
+    bool skip(ValueType) {
         std::string_view token;
         return next(token);
     }
-    bool skip_list_items(PlyType type, uint64_t count) {
+    bool skip_list_items(ValueType type, uint64_t count) {
         for (uint64_t i = 0; i < count; ++i) {
             if (!skip(type)) return false;
         }
@@ -366,7 +355,7 @@ public:
         const std::optional<uint64_t> left = tokens_.bytes_left();
         return min_tokens == 0 || !left || count <= (*left / 2 + 1) / min_tokens;
     }
-    uint64_t list_limit(PlyType) const {
+    uint64_t list_limit(ValueType) const {
         const std::optional<uint64_t> left = tokens_.bytes_left();
         return left ? *left / 2 + 1 : std::numeric_limits<uint64_t>::max();
     }
@@ -446,7 +435,7 @@ private:
 void minimum_item_size(const Element& element, size_t& bytes, size_t& tokens) {
     bytes = 0;
     tokens = element.properties.size();
-    for (const Property& property : element.properties) bytes += type_size(property.is_list ? property.count_type : property.type);
+    for (const Property& property : element.properties) bytes += value_size(property.is_list ? property.count_type : property.type);
 }
 
 template <class Source>
@@ -468,6 +457,9 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
         const size_t reserved = source.size_known() ? static_cast<size_t>(element.count) : 0;
         if (is_vertex) out.positions.reserve(3 * reserved);
         if (is_vertex && header.has_normals) out.normals.reserve(3 * reserved);
+        for (const Property& property : element.properties) {
+            if (property.role == Role::carry) out.properties[property.carried].bytes.reserve(reserved * value_size(property.type));
+        }
         if (element.kind == ElementKind::face) out.triangles.reserve(out.triangles.size() + 3 * reserved);
         for (uint64_t item = 0; item < element.count; ++item) {
             double values[VERTEX_VALUES] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // by Role, x to nz
@@ -476,6 +468,15 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
                 if (!property.is_list) {
                     if (property.role == Role::skip) {
                         if (!source.skip(property.type)) return fail(source.error());
+                        continue;
+                    }
+                    if (property.role == Role::carry) {
+                        double value = 0.0;
+                        if (!source.read_number(property.type, value)) return fail(source.error());
+                        if (!out.properties[property.carried].append(value)) {
+                            return fail("vertex " + std::to_string(item) + ": property " + quote_token(property.name) + " holds " +
+                                        value_text(value) + ", not a " + ply_type_name(property.type));
+                        }
                         continue;
                     }
                     const size_t slot = static_cast<size_t>(property.role) - static_cast<size_t>(Role::x);
@@ -517,6 +518,13 @@ IoStatus read_ply(ByteSource& source, MeshData& out) {
     Header header;
     IoStatus status = parse_header(source, header);
     if (!status) return status;
+    for (Element& element : header.elements) {
+        for (Property& property : element.properties) {
+            if (property.role != Role::carry) continue;
+            property.carried = out.properties.size();
+            out.properties.push_back({property.name, property.type, {}});
+        }
+    }
     for (const Element& element : header.elements) {
         out.has_faces = out.has_faces || element.kind == ElementKind::face || element.kind == ElementKind::tristrips;
     }

@@ -1,6 +1,8 @@
 // Compacting a mesh's vertices to those its triangles use.
 #include "io/unused_vertices.h"
 
+#include <cstring>
+
 namespace dbrg::io {
 
 std::vector<uint32_t> drop_unused_vertices(MeshData& mesh) {
@@ -16,10 +18,15 @@ std::vector<uint32_t> drop_unused_vertices(MeshData& mesh) {
             mesh.positions[3 * size_t(kept) + k] = mesh.positions[3 * v + k];
             if (!mesh.normals.empty()) mesh.normals[3 * size_t(kept) + k] = mesh.normals[3 * v + k];
         }
+        for (VertexProperty& property : mesh.properties) {
+            const size_t size = value_size(property.type);
+            std::memmove(&property.bytes[kept * size], &property.bytes[v * size], size);
+        }
         ++kept;
     }
     mesh.positions.resize(3 * size_t(kept));
     if (!mesh.normals.empty()) mesh.normals.resize(3 * size_t(kept));
+    for (VertexProperty& property : mesh.properties) property.bytes.resize(kept * value_size(property.type));
     for (uint32_t& vertex : mesh.triangles) vertex = old_to_new[vertex];
     return old_to_new;
 }

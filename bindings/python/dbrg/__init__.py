@@ -31,7 +31,7 @@ __version__ = _capi.DBRG_VERSION_STRING
 LibraryError.__module__ = __name__
 
 __all__ = [
-    "reconstruct", "delaunay", "validate_points", "library_version", "library_path",
+    "reconstruct", "delaunay", "validate_points", "read_points", "library_version", "library_path",
     "Mesh", "Delaunay", "STAGES",
     "Error", "InvalidArgumentError", "InvalidParameterError", "NonFiniteInputError", "TooFewPointsError",
     "DegenerateInputError", "TooManyPointsError", "OutOfMemoryError", "CancelledError", "UnsupportedError",
@@ -309,6 +309,8 @@ class Mesh:
                    outward on closed surfaces; (0, 0, 0) where no triangle uses the vertex. Computed
                    on first use by libdbrg_io, as the dbrg program writes them.
     write(path)    writes the mesh with the project's own writers (libdbrg_io), as the dbrg program does.
+    unused_points  uint32 indices of the input points no triangle uses, ascending (a merged duplicate
+                   point is among them: the triangles use the smallest index of its copies).
     triangles      (M, 3) uint32 indices into the input points, counter-clockwise seen from outside
                    (closed components face outward); merged duplicate points are represented by the
                    smallest input index among them.
@@ -371,17 +373,68 @@ class Mesh:
             os.fsencode(path), _pointer(positions, ctypes.c_double), len(positions),
             _pointer(triangles, ctypes.c_uint32), len(triangles),
             None if normal_array is None else _pointer(normal_array, ctypes.c_float), message, len(message))
-        text = message.value.decode("utf-8", "replace")
-        if status == 1:
-            raise ValueError(text)
-        if status == 3:
-            raise MemoryError(text)
-        if status != 0:
-            raise OSError(text)
+        _raise_for_io_status(status, message)
+
+    @property
+    def unused_points(self):
+        used = np.zeros(self.point_count, dtype=bool)
+        used[np.asarray(self.triangles, dtype=np.int64).ravel()] = True
+        return np.flatnonzero(~used).astype(np.uint32)
 
     def __repr__(self):
         return "<dbrg.Mesh: %d triangles over %d points, %d boundary loops>" % (
             len(self.triangles), self.point_count, len(self.boundary_loops))
+
+
+def _raise_for_io_status(status, message):
+    """Raises the exception for a libdbrg_io status other than DBRG_IO_OK, with the library's message."""
+    text = message.value.decode("utf-8", "replace")
+    if status == 1:
+        raise ValueError(text)
+    if status == 3:
+        raise MemoryError(text)
+    if status != 0:
+        raise OSError(text)
+
+
+def read_points(path):
+    """Reads the points of a file with the dbrg program's readers (libdbrg_io): .ply .obj .off .stl .xyz
+    .pts .las, chosen by the extension; faces are not read.
+
+    Returns (points, attributes): points an (N, 3) float64 array, attributes a dict of per-point
+    arrays of N values by name, in the file's order and types: a PLY's other vertex properties
+    ("red" uint8, "intensity", "confidence", ...; its normals as "nx", "ny", "nz" float32), a LAS
+    file's "intensity" and, in the formats with colour, "red", "green", "blue" (uint16).
+    Raises ValueError for an unknown extension or a .laz file (decompress it first), OSError for a file
+    that cannot be read or is malformed (the message says where), MemoryError."""
+    lib = io_library()
+    handle = ctypes.c_void_p()
+    message = ctypes.create_string_buffer(1024)
+    status = lib.dbrg_io_read_points(os.fsencode(path), ctypes.byref(handle), message, len(message))
+    _raise_for_io_status(status, message)
+    try:
+        count = lib.dbrg_io_points_count(handle)
+
+        def copy(address, dtype, shape):
+            if not address or count == 0:
+                return np.zeros(shape, dtype=dtype)
+            items = int(np.prod(shape))
+            buffer = (ctypes.c_char * (items * np.dtype(dtype).itemsize)).from_address(address)
+            return np.frombuffer(buffer, dtype=dtype, count=items).reshape(shape).copy()
+
+        points = copy(lib.dbrg_io_points_positions(handle), np.float64, (count, 3))
+        attributes = {}
+        for index in range(lib.dbrg_io_points_attribute_count(handle)):
+            name = lib.dbrg_io_points_attribute_name(handle, index).decode("utf-8", "replace")
+            dtype = _io.VALUE_TYPES[lib.dbrg_io_points_attribute_type(handle, index)]
+            attributes[name] = copy(lib.dbrg_io_points_attribute_values(handle, index), dtype, (count,))
+        normals = lib.dbrg_io_points_normals(handle)
+        if normals:
+            xyz = copy(normals, np.float32, (count, 3))
+            attributes.update({"nx": xyz[:, 0].copy(), "ny": xyz[:, 1].copy(), "nz": xyz[:, 2].copy()})
+        return points, attributes
+    finally:
+        lib.dbrg_io_points_destroy(handle)
 
 
 # tets: (T, 4) uint32, each positively oriented; adjacency: (T, 4) uint32, entry [t, f] the tetrahedron

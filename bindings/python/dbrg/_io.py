@@ -1,7 +1,7 @@
-"""ctypes declarations mirroring include/dbrg/dbrg_io.h (libdbrg_io: the project's mesh writers and
-vertex normals). Declares only; dbrg/_library.py loads the library."""
+"""ctypes declarations mirroring include/dbrg/dbrg_io.h (libdbrg_io: the project's readers, mesh writers
+and vertex normals). Declares only; dbrg/_library.py loads the library."""
 
-from ctypes import POINTER, c_char_p, c_double, c_float, c_int, c_size_t, c_uint32
+from ctypes import POINTER, c_char_p, c_double, c_float, c_int, c_size_t, c_uint32, c_void_p
 
 DBRG_IO_STATUS = {
     0: "DBRG_IO_OK",
@@ -10,10 +10,22 @@ DBRG_IO_STATUS = {
     3: "DBRG_IO_ERR_OUT_OF_MEMORY",
 }
 
+# dbrg_io_value_type: the numpy type of each value, by the enum's pinned values.
+VALUE_TYPES = {0: "int8", 1: "uint8", 2: "int16", 3: "uint16", 4: "int32", 5: "uint32", 6: "float32", 7: "float64"}
+
 FUNCTIONS = {
     "dbrg_io_vertex_normals": (c_int, [POINTER(c_double), c_uint32, POINTER(c_uint32), c_uint32, POINTER(c_float)]),
     "dbrg_io_write_mesh": (c_int, [c_char_p, POINTER(c_double), c_uint32, POINTER(c_uint32), c_uint32,
                                    POINTER(c_float), c_char_p, c_size_t]),
+    "dbrg_io_read_points": (c_int, [c_char_p, POINTER(c_void_p), c_char_p, c_size_t]),
+    "dbrg_io_points_destroy": (None, [c_void_p]),
+    "dbrg_io_points_count": (c_uint32, [c_void_p]),
+    "dbrg_io_points_positions": (c_void_p, [c_void_p]),
+    "dbrg_io_points_normals": (c_void_p, [c_void_p]),
+    "dbrg_io_points_attribute_count": (c_uint32, [c_void_p]),
+    "dbrg_io_points_attribute_name": (c_char_p, [c_void_p, c_uint32]),
+    "dbrg_io_points_attribute_type": (c_int, [c_void_p, c_uint32]),
+    "dbrg_io_points_attribute_values": (c_void_p, [c_void_p, c_uint32]),
 }
 
 
