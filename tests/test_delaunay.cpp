@@ -349,6 +349,32 @@ TEST_CASE("threads inserting the last round at once make the tetrahedra of one t
     }
 }
 
+TEST_CASE("threads sharing the last round of a cylinder make about the predicate calls of one thread") {
+    // Points on an open cylinder: the long tetrahedra across its inside make the threads meet, and many
+    // points are set aside for the calling thread. Each of those walks from the one inserted before it, so
+    // a walk that starts from an arbitrary tetrahedron around that point crosses the cylinder: counts, not
+    // time, so the check holds on a loaded machine (with no point set aside the counts are equal).
+    Random r(31);
+    const size_t n = 60000;
+    std::vector<double> cylinder(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+        const double angle = 6.283185307179586 * r.uniform();
+        cylinder[3 * i] = cos(angle);
+        cylinder[3 * i + 1] = sin(angle);
+        cylinder[3 * i + 2] = 6 * r.uniform();
+    }
+    dbrg_params params = test_params();
+    params.threads = 1;
+    Built one(cylinder, params, true);
+    REQUIRE(one.status == DBRG_OK);
+    params.threads = 2;
+    Built two(cylinder, params, true);
+    REQUIRE(two.status == DBRG_OK);
+    CHECK(canonical_tets(two.tets) == canonical_tets(one.tets));
+    MESSAGE("predicate calls, one thread: " << one.tets.counters.calls << ", two: " << two.tets.counters.calls);
+    CHECK(double(two.tets.counters.calls) < 1.25 * double(one.tets.counters.calls));
+}
+
 TEST_CASE("too few and collinear inputs fail with a status; coplanar ones have no tetrahedra") {
     Context context(test_params());
     ConditionedPoints points(context.memory);

@@ -165,6 +165,31 @@ TEST_CASE("removing faces opens closed fans and splits open ones") {
     CHECK(surface.pinched_vertex_count() == 0);
 }
 
+TEST_CASE("the edit count changes with every face added or removed, and with nothing else") {
+    // Growing reuses a candidate's examination while the count is what it was then.
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(6));
+    std::vector<uint32_t> counts = {surface.edit_count()};
+    for (uint32_t i = 1; i <= 4; ++i) {
+        surface.add_face(0, i, i + 1, 0);
+        counts.push_back(surface.edit_count());
+    }
+    const uint32_t before_queries = surface.edit_count();
+    surface.check_face(0, 5, 1);
+    surface.find_halfedge(0, 1);
+    CHECK(surface.edit_count() == before_queries);
+    for (uint32_t f : {1u, 2u}) {
+        REQUIRE(surface.remove_face(f));
+        counts.push_back(surface.edit_count());
+    }
+    surface.add_face(0, 2, 3, 0);
+    counts.push_back(surface.edit_count());
+    std::vector<uint32_t> sorted = counts;
+    std::sort(sorted.begin(), sorted.end());
+    CHECK(std::unique(sorted.begin(), sorted.end()) == sorted.end());
+}
+
 TEST_CASE("validate reports an edge used twice in the same direction") {
     Memory memory(nullptr);
     Surface surface(memory);

@@ -66,6 +66,7 @@ dbrg_status RegionGrower::grow() {
     if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
         return context_.fail_out_of_memory();
     }
+    for (Examined& e : examined_) e = Examined();  // S's edit count starts again
 
     // Seeds are tried from the highest point down (§3.1.1); ties go to the smaller vertex id, which is a
     // function of the coordinates (conditioning numbers the points along a Hilbert curve). Each vertex is
@@ -197,7 +198,7 @@ dbrg_status RegionGrower::drain_queue(const ProgressSpan& progress) {
         ++stats.candidates_evaluated;
         double smoothness;
         FaceCheck check;
-        const CandidateVerdict verdict = examine(c, smoothness, check);
+        const CandidateVerdict verdict = examine_again(c, smoothness, check);
         if (verdict == CandidateVerdict::pinch && !c.postponed) {
             DBRG_PROPAGATE(postpone(c));
             continue;
@@ -355,6 +356,18 @@ RegionGrower::CandidateVerdict RegionGrower::examine(const Candidate& c, double&
     return check.pinches > 0 ? CandidateVerdict::pinch : CandidateVerdict::valid;
 }
 
+// examine(c) with S as it is now, taken from what propose kept when S has not changed since.
+RegionGrower::CandidateVerdict RegionGrower::examine_again(const Candidate& c, double& smoothness, FaceCheck& check) const {
+    for (const Examined& e : examined_) {
+        if (e.halfedge == c.halfedge && e.apex == c.apex && e.edits == surface_.edit_count()) {
+            smoothness = e.smoothness;
+            check = e.check;
+            return e.verdict;
+        }
+    }
+    return examine(c, smoothness, check);
+}
+
 // §4: a candidate much larger than the triangles of S spans an opening of an open surface.
 bool RegionGrower::passes_boundary_test(const Candidate& c) const {
     const double factor = context_.params.boundary_factor;
@@ -380,8 +393,12 @@ CandidateRank RegionGrower::rank(const Candidate& c) const {
 dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after) {
     Candidate c;
     if (!select_candidate(halfedge, after, c)) return DBRG_OK;
-    FaceCheck check;
-    examine(c, c.smoothness, check);
+    Examined& kept = examined_[examined_next_++ % EXAMINED_KEPT];
+    kept.verdict = examine(c, c.smoothness, kept.check);
+    kept.halfedge = halfedge;
+    kept.apex = c.apex;
+    kept.edits = surface_.edit_count();
+    kept.smoothness = c.smoothness;
     c.postponed = 0;
     return enqueue(c) ? DBRG_OK : context_.fail_out_of_memory();
 }

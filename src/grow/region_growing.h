@@ -71,6 +71,7 @@ private:
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
     CandidateVerdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
+    CandidateVerdict examine_again(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
     bool passes_boundary_test(const Candidate& candidate) const;
     CandidateRank rank(const Candidate& candidate) const;
     dbrg_status propose(uint32_t halfedge, const CandidateRank* after);
@@ -97,6 +98,17 @@ private:
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
+    // What examine answered for the last candidates proposed, and S's edit count then. About half of the
+    // candidates taken from the queue were proposed for the face added just before, with S as it is.
+    struct Examined {
+        uint32_t halfedge = NO_HALFEDGE, apex = 0, edits = 0;
+        CandidateVerdict verdict = CandidateVerdict::valid;
+        double smoothness = 0;
+        FaceCheck check;
+    };
+    static constexpr uint32_t EXAMINED_KEPT = 4;  // the proposals of one face and a rejection's
+    Examined examined_[EXAMINED_KEPT];
+    uint32_t examined_next_ = 0;
     bool local_boundary_test_ = false;  // regrow_holes: §4 against the faces around the edge
     EdgeFlipper flipper_;
 };

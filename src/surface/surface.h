@@ -56,6 +56,8 @@ public:
     // Face slots, removed ones included.
     uint32_t face_count() const { return static_cast<uint32_t>(corners_.size() / 3); }
     uint32_t live_face_count() const { return face_count() - removed_faces_; }
+    // Faces added and removed so far: S is unchanged for as long as this is.
+    uint32_t edit_count() const { return face_count() + removed_faces_; }
     uint32_t vertex_count() const { return static_cast<uint32_t>(vertex_halfedge_.size()); }
 
     static uint32_t face_of(uint32_t h) { return h / 3; }
