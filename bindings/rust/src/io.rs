@@ -88,7 +88,8 @@ pub fn read_points(path: impl AsRef<Path>) -> Result<(Vec<[f64; 3]>, Vec<Attribu
     let count = unsafe { io_sys::dbrg_io_points_count(points.raw) } as usize;
     // SAFETY (every copy below): the accessors' pointers hold `count` values of their type and live as
     // long as `points`.
-    let positions = unsafe { copy_values::<[f64; 3]>(io_sys::dbrg_io_points_positions(points.raw) as *const c_void, count) };
+    let positions =
+        unsafe { copy_values::<[f64; 3]>(io_sys::dbrg_io_points_positions(points.raw) as *const c_void, count) };
     let mut attributes = Vec::new();
     for index in 0..unsafe { io_sys::dbrg_io_points_attribute_count(points.raw) } {
         let (name, kind, values) = unsafe {
@@ -161,7 +162,8 @@ unsafe fn copy_values<T: Copy>(data: *const c_void, count: usize) -> Vec<T> {
 /// Fails with [`Status::InvalidArgument`] when a triangle indexes past `vertices` or there are more
 /// than `u32::MAX` vertices or triangles.
 pub fn vertex_normals(vertices: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<Vec<[f32; 3]>, Error> {
-    let (vertex_count, triangle_count) = (count_u32(vertices.len(), "vertices")?, count_u32(triangles.len(), "triangles")?);
+    let (vertex_count, triangle_count) =
+        (count_u32(vertices.len(), "vertices")?, count_u32(triangles.len(), "triangles")?);
     let mut normals = vec![[0f32; 3]; vertices.len()];
     let status = unsafe {
         io_sys::dbrg_io_vertex_normals(
@@ -198,7 +200,8 @@ pub fn write_mesh(
     normals: Option<&[[f32; 3]]>,
 ) -> Result<(), Error> {
     let path = c_path(path.as_ref())?;
-    let (vertex_count, triangle_count) = (count_u32(vertices.len(), "vertices")?, count_u32(triangles.len(), "triangles")?);
+    let (vertex_count, triangle_count) =
+        (count_u32(vertices.len(), "vertices")?, count_u32(triangles.len(), "triangles")?);
     if let Some(normals) = normals {
         if normals.len() != vertices.len() {
             return Err(Error::new(
@@ -238,7 +241,11 @@ impl Mesh {
         if points.len() != self.point_count() as usize {
             return Err(Error::new(
                 Status::InvalidArgument,
-                format!("{} points given for a mesh over {}: pass the points it was reconstructed from", points.len(), self.point_count()),
+                format!(
+                    "{} points given for a mesh over {}: pass the points it was reconstructed from",
+                    points.len(),
+                    self.point_count()
+                ),
             ));
         }
         Ok(points.to_f64())
@@ -289,7 +296,9 @@ fn c_path(path: &Path) -> Result<CString, Error> {
 }
 
 fn count_u32(count: usize, what: &str) -> Result<u32, Error> {
-    u32::try_from(count).map_err(|_| Error::new(Status::InvalidArgument, format!("{} {}: more than the I/O library takes", count, what)))
+    u32::try_from(count).map_err(|_| {
+        Error::new(Status::InvalidArgument, format!("{} {}: more than the I/O library takes", count, what))
+    })
 }
 
 fn first_index_past(vertex_count: usize, triangles: &[[u32; 3]]) -> Option<usize> {

@@ -153,19 +153,23 @@ fn failures_name_the_problem() {
     assert!(error.message.contains("unknown file type"), "{}", error.message);
 
     let truncated = scratch.path("truncated.ply");
-    fs::write(&truncated, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n").unwrap();
+    let header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    fs::write(&truncated, format!("{}end_header\n0 0 0\n", header)).unwrap();
     assert_eq!(dbrg::read_points(&truncated).expect_err("truncated").status, Status::File);
 
     let vertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-    let error = dbrg::write_mesh(scratch.path("no-such-folder/m.ply"), &vertices, &[[0, 1, 2]], None).expect_err("no folder");
+    let error =
+        dbrg::write_mesh(scratch.path("no-such-folder/m.ply"), &vertices, &[[0, 1, 2]], None).expect_err("no folder");
     assert_eq!(error.status, Status::File);
     assert!(error.message.contains("no-such-folder"), "{}", error.message);
-    let error = dbrg::write_mesh(scratch.path("m.las"), &vertices, &[[0, 1, 2]], None).expect_err("not a written format");
+    let error =
+        dbrg::write_mesh(scratch.path("m.las"), &vertices, &[[0, 1, 2]], None).expect_err("not a written format");
     assert_eq!(error.status, Status::InvalidArgument);
     let error = dbrg::write_mesh(scratch.path("m.ply"), &vertices, &[[0, 1, 3]], None).expect_err("index past the end");
     assert_eq!(error.status, Status::InvalidArgument);
     assert!(error.message.contains("triangle 0"), "{}", error.message);
-    let error = dbrg::write_mesh(scratch.path("m.ply"), &vertices, &[[0, 1, 2]], Some(&[[0.0, 0.0, 1.0]])).expect_err("one normal");
+    let error = dbrg::write_mesh(scratch.path("m.ply"), &vertices, &[[0, 1, 2]], Some(&[[0.0, 0.0, 1.0]]))
+        .expect_err("one normal");
     assert_eq!(error.status, Status::InvalidArgument);
     assert!(!scratch.path("m.ply").exists(), "nothing is written on failure");
 }
