@@ -404,7 +404,7 @@ impl<'a> Points<'a> {
     }
 
     /// A copy of the points as `f64`, in order.
-    fn to_f64(&self) -> Vec<[f64; 3]> {
+    fn to_f64(self) -> Vec<[f64; 3]> {
         let base = self.raw.data as *const u8;
         (0..self.raw.count)
             .map(|i| {
