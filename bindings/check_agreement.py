@@ -11,10 +11,13 @@
   - every enum constant and every DBRG_ #define has the same value, and the package versions
     (Cargo.toml, the Python package) are the header's.
 
+--io does the same for the I/O library's interface: dbrg_io.h (DBRG_IO_API functions), libdbrg_io, the
+Python declarations in bindings/python/dbrg/_io.py and the Rust ones in bindings/rust/src/io_sys.rs.
+
 Prints every disagreement and exits 1 when there is one.
 
-    check_agreement.py HEADER LIBRARY PYTHON_CAPI RUST_SYS CARGO_TOML [--nm NM]
-    check_agreement.py --self-test HEADER LIBRARY PYTHON_CAPI RUST_SYS CARGO_TOML [--nm NM]
+    check_agreement.py HEADER LIBRARY PYTHON_CAPI RUST_SYS CARGO_TOML [--io IO_HEADER IO_LIBRARY IO_PYTHON IO_RUST] [--nm NM]
+    check_agreement.py --self-test ...the same arguments...
 
 --self-test applies a series of single drifts (a renamed field, a reordered field, a missing function,
 a changed enum value, ...) to copies of the files and fails unless the check catches every one.
@@ -100,13 +103,13 @@ def parse_header(path):
     for name, body in re.findall(r"typedef\s+struct\s+(\w+)\s*\{(.*?)\}\s*\w+\s*;", text, flags=re.S):
         header["structs"][name] = [c_declaration(field, enums) for field in split_top_level(body, ";")]
     code = "\n".join(line for line in text.splitlines() if not line.lstrip().startswith("#"))
-    for result, name, params in re.findall(r"DBRG_API\s+(.*?)\b(dbrg_\w+)\s*\((.*?)\)\s*;", code, flags=re.S):
+    for result, name, params in re.findall(r"DBRG(?:_IO)?_API\s+(.*?)\b(dbrg_\w+)\s*\((.*?)\)\s*;", code, flags=re.S):
         params = [] if params.strip() == "void" else [c_declaration(p, enums)[1] for p in split_top_level(params, ",")]
         header["functions"][name] = (c_kind(result, enums), params)
     defines = {}
     for name, value in re.findall(r"^\s*#define\s+(DBRG_\w+)[ \t]+([^\n]+)$", raw, flags=re.M):
         value = value.strip()
-        if name == "DBRG_API" or value.startswith("__"):
+        if name.endswith("_API") or value.startswith("__"):
             continue
         defines[name] = value
     for name, value in defines.items():
@@ -291,9 +294,11 @@ def compare(header, binding, label, normalize=None):
 
 
 def check(header_path, library, python_capi, rust_sys, cargo_toml, nm, quiet=False):
+    """cargo_toml: None for a header without the package version (dbrg_io.h)."""
     header = parse_header(header_path)
     problems = []
-    if not header["functions"] or not header["structs"] or not header["enums"]:
+    # dbrg_io.h has opaque types only: a struct a binding declares is still compared with none.
+    if not header["functions"] or not header["enums"]:
         problems.append("found nothing to compare in %s (did its layout change?)" % header_path)
     exported = exported_functions(library, nm)
     for name in sorted(set(header["functions"]) - exported):
@@ -302,16 +307,17 @@ def check(header_path, library, python_capi, rust_sys, cargo_toml, nm, quiet=Fal
         problems.append("the library exports %s, which the header does not declare" % name)
     problems += compare(header, parse_python(python_capi), "the Python binding", same_kind_in_ctypes)
     problems += compare(header, parse_rust(rust_sys), "the Rust binding")
-    cargo_version = re.search(r'^version\s*=\s*"([^"]+)"', open(cargo_toml).read(), flags=re.M)
-    if not cargo_version or cargo_version.group(1) != header["defines"]["DBRG_VERSION_STRING"]:
-        problems.append("Cargo.toml's version %s is not the header's %s"
-                        % (cargo_version and cargo_version.group(1), header["defines"]["DBRG_VERSION_STRING"]))
+    if cargo_toml:
+        cargo_version = re.search(r'^version\s*=\s*"([^"]+)"', open(cargo_toml).read(), flags=re.M)
+        if not cargo_version or cargo_version.group(1) != header["defines"]["DBRG_VERSION_STRING"]:
+            problems.append("Cargo.toml's version %s is not the header's %s"
+                            % (cargo_version and cargo_version.group(1), header["defines"]["DBRG_VERSION_STRING"]))
     if not quiet:
-        print("compared %d functions, %d structs (%d fields), %d enums, %d defines across dbrg.h, %s, "
+        print("compared %d functions, %d structs (%d fields), %d enums, %d defines across %s, %s, "
               "the Python binding and the Rust binding" % (
                   len(header["functions"]), len(header["structs"]),
                   sum(len(f) for f in header["structs"].values()), len(header["enums"]), len(header["defines"]),
-                  os.path.basename(library)))
+                  os.path.basename(header_path), os.path.basename(library)))
     return problems
 
 
@@ -348,14 +354,30 @@ DRIFTS = [
      "a function added to the header only (the library does not export it)"),
     ("header", "    DBRG_STAGE_OUTPUT = 5", "    DBRG_STAGE_OUTPUT = 5,\n    DBRG_STAGE_NEW = 6", "an enum constant added to the header"),
     ("cargo", 'version = "', 'version = "9', "Cargo.toml's version"),
+    ("io_rust", "pub const DBRG_IO_ERR_FILE: dbrg_io_status = 2;", "pub const DBRG_IO_ERR_FILE: dbrg_io_status = 3;",
+     "an I/O status value changed in Rust"),
+    ("io_rust", "    pub fn dbrg_io_points_count(points: *const dbrg_io_points) -> u32;\n", "",
+     "an I/O function missing from Rust"),
+    ("io_rust", "        normals: *const f32,\n        message: *mut c_char,", "        message: *mut c_char,",
+     "a parameter missing from a Rust I/O function"),
+    ("io_python", '        "DBRG_IO_UINT16": 3,', '        "DBRG_IO_UINT16": 4,', "a value type changed in Python"),
+    ("io_python", '    "dbrg_io_points_attribute_type": (c_int, [c_void_p, c_uint32]),',
+     '    "dbrg_io_points_attribute_type": (c_int, [c_void_p]),', "a parameter missing from a Python I/O function"),
+    ("io_header", "    DBRG_IO_FLOAT64 = 7", "    DBRG_IO_FLOAT64 = 7,\n    DBRG_IO_FLOAT16 = 8",
+     "a value type added to dbrg_io.h"),
+    ("io_header", "DBRG_IO_API void dbrg_io_points_destroy(dbrg_io_points* points);",
+     "DBRG_IO_API void dbrg_io_points_destroy(dbrg_io_points* points);\nDBRG_IO_API void dbrg_io_new_thing(void);",
+     "a function added to dbrg_io.h only (libdbrg_io does not export it)"),
 ]
 
 
-def self_test(paths, nm):
+def self_test(paths, io_paths, nm):
     header, library, python_capi, rust_sys, cargo_toml = paths
     failures = []
     with tempfile.TemporaryDirectory(prefix="dbrg-agreement-") as scratch:
         originals = {"header": header, "python": python_capi, "rust": rust_sys, "cargo": cargo_toml}
+        if io_paths:
+            originals.update(zip(["io_header", "io_python", "io_rust"], [io_paths[0]] + io_paths[2:]))
         copies = {key: os.path.join(scratch, key + "_" + os.path.basename(path)) for key, path in originals.items()}
 
         def reset():
@@ -363,13 +385,18 @@ def self_test(paths, nm):
                 shutil.copy(path, copies[key])
 
         def run():
-            return check(copies["header"], library, copies["python"], copies["rust"], copies["cargo"], nm, quiet=True)
+            problems = check(copies["header"], library, copies["python"], copies["rust"], copies["cargo"], nm, quiet=True)
+            if io_paths:
+                problems += check(copies["io_header"], io_paths[1], copies["io_python"], copies["io_rust"], None, nm,
+                                  quiet=True)
+            return problems
 
         reset()
         baseline = run()
         if baseline:
             failures.append("the unchanged files already disagree: %s" % baseline)
-        for key, old, new, description in DRIFTS:
+        drifts = [drift for drift in DRIFTS if drift[0] in originals]
+        for key, old, new, description in drifts:
             reset()
             text = open(copies[key]).read()
             if old not in text:
@@ -386,7 +413,7 @@ def self_test(paths, nm):
                 failures.append("not caught: %s" % description)
     for failure in failures:
         print("SELF-TEST FAILURE:", failure)
-    print("self-test: %d drifts, %d caught" % (len(DRIFTS), len(DRIFTS) - sum(f.startswith("not caught") for f in failures)))
+    print("self-test: %d drifts, %d caught" % (len(drifts), len(drifts) - sum(f.startswith("not caught") for f in failures)))
     return 1 if failures else 0
 
 
@@ -399,11 +426,14 @@ def main():
     parser.add_argument("python_capi")
     parser.add_argument("rust_sys")
     parser.add_argument("cargo_toml")
+    parser.add_argument("--io", nargs=4, metavar=("IO_HEADER", "IO_LIBRARY", "IO_PYTHON", "IO_RUST"))
     args = parser.parse_args()
     paths = (args.header, args.library, args.python_capi, args.rust_sys, args.cargo_toml)
     if args.self_test:
-        return self_test(paths, args.nm)
+        return self_test(paths, args.io, args.nm)
     problems = check(*paths, nm=args.nm)
+    if args.io:
+        problems += check(*args.io, None, nm=args.nm)
     for problem in problems:
         print("DISAGREEMENT:", problem)
     if not problems:

@@ -24,7 +24,7 @@ import warnings
 
 import numpy as np
 
-from . import _capi, _io
+from . import _capi, _convert, _io
 from ._library import LibraryError, io_library, library, library_path
 
 __version__ = _capi.DBRG_VERSION_STRING
@@ -309,6 +309,8 @@ class Mesh:
                    outward on closed surfaces; (0, 0, 0) where no triangle uses the vertex. Computed
                    on first use by libdbrg_io, as the dbrg program writes them.
     write(path)    writes the mesh with the project's own writers (libdbrg_io), as the dbrg program does.
+    to_open3d(), to_trimesh()  the mesh as an open3d.geometry.TriangleMesh or a trimesh.Trimesh, with its
+                   vertex normals; ImportError naming the package when it is not installed.
     unused_points  uint32 indices of the input points no triangle uses, ascending (a merged duplicate
                    point is among them: the triangles use the smallest index of its copies).
     triangles      (M, 3) uint32 indices into the input points, counter-clockwise seen from outside
@@ -374,6 +376,17 @@ class Mesh:
             _pointer(triangles, ctypes.c_uint32), len(triangles),
             None if normal_array is None else _pointer(normal_array, ctypes.c_float), message, len(message))
         _raise_for_io_status(status, message)
+
+    def to_open3d(self):
+        """An open3d.geometry.TriangleMesh with these vertices (unused points among them), triangles and
+        vertex_normals. Raises ImportError naming open3d when it cannot be imported."""
+        return _convert.to_open3d(self)
+
+    def to_trimesh(self):
+        """A trimesh.Trimesh with these vertices (unused points among them, in order), triangles and
+        vertex_normals, made with process=False (nothing merged or removed). Raises ImportError naming
+        trimesh when it cannot be imported."""
+        return _convert.to_trimesh(self)
 
     @property
     def unused_points(self):

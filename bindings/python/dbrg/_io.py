@@ -3,15 +3,31 @@ and vertex normals). Declares only; dbrg/_library.py loads the library."""
 
 from ctypes import POINTER, c_char_p, c_double, c_float, c_int, c_size_t, c_uint32, c_void_p
 
-DBRG_IO_STATUS = {
-    0: "DBRG_IO_OK",
-    1: "DBRG_IO_ERR_INVALID_ARGUMENT",
-    2: "DBRG_IO_ERR_FILE",
-    3: "DBRG_IO_ERR_OUT_OF_MEMORY",
+# The header's enums by name, as bindings/check_agreement.py compares them.
+ENUMS = {
+    "dbrg_io_status": {
+        "DBRG_IO_OK": 0,
+        "DBRG_IO_ERR_INVALID_ARGUMENT": 1,
+        "DBRG_IO_ERR_FILE": 2,
+        "DBRG_IO_ERR_OUT_OF_MEMORY": 3,
+    },
+    "dbrg_io_value_type": {
+        "DBRG_IO_INT8": 0,
+        "DBRG_IO_UINT8": 1,
+        "DBRG_IO_INT16": 2,
+        "DBRG_IO_UINT16": 3,
+        "DBRG_IO_INT32": 4,
+        "DBRG_IO_UINT32": 5,
+        "DBRG_IO_FLOAT32": 6,
+        "DBRG_IO_FLOAT64": 7,
+    },
 }
 
-# dbrg_io_value_type: the numpy type of each value, by the enum's pinned values.
-VALUE_TYPES = {0: "int8", 1: "uint8", 2: "int16", 3: "uint16", 4: "int32", 5: "uint32", 6: "float32", 7: "float64"}
+# Status names by value.
+DBRG_IO_STATUS = {value: name for name, value in ENUMS["dbrg_io_status"].items()}
+
+# The numpy type of each dbrg_io_value_type value: "int8", "uint8", ... "float64".
+VALUE_TYPES = {value: name[len("DBRG_IO_"):].lower() for name, value in ENUMS["dbrg_io_value_type"].items()}
 
 FUNCTIONS = {
     "dbrg_io_vertex_normals": (c_int, [POINTER(c_double), c_uint32, POINTER(c_uint32), c_uint32, POINTER(c_float)]),

@@ -13,12 +13,14 @@
 //! # Ok::<(), dbrg::Error>(())
 //! ```
 //!
-//! The library is linked at build time: set `DBRG_LIB_DIR` to the directory holding `libdbrg.so`
-//! (for example `build/src`), or install dbrg so that `pkg-config --libs dbrg` finds it.
+//! The libraries are linked at build time: set `DBRG_LIB_DIR` to the directory holding `libdbrg.so`
+//! (for example `build/src`), or install dbrg so that `pkg-config --libs dbrg dbrg_io` finds them.
 //!
-//! [`sys`] holds the raw declarations of `dbrg.h`; everything else is the safe interface: [`Params`],
-//! [`reconstruct`] and [`reconstruct_with_progress`], the owning [`Mesh`], [`Error`] with the status
-//! and the library's message, and the EXPERIMENTAL [`tetrahedralize`].
+//! [`sys`] and [`io_sys`] hold the raw declarations of `dbrg.h` and `dbrg_io.h`; everything else is
+//! the safe interface: [`Params`], [`reconstruct`] and [`reconstruct_with_progress`], the owning
+//! [`Mesh`], [`Error`] with the status and the library's message, the EXPERIMENTAL [`tetrahedralize`],
+//! and the dbrg program's own readers and writers: [`read_points`], [`write_mesh`] and
+//! [`Mesh::write`], [`vertex_normals`] and [`Mesh::vertex_normals`].
 
 use std::any::Any;
 use std::ffi::CStr;
@@ -29,7 +31,11 @@ use std::panic::{self, AssertUnwindSafe};
 use std::ptr::{self, NonNull};
 use std::slice;
 
+pub mod io_sys;
 pub mod sys;
+
+mod io;
+pub use io::{read_points, vertex_normals, write_mesh, Attribute, AttributeValues};
 
 /// Statistics of one reconstruction, exactly the C `dbrg_stats` (counts, rejections by rule,
 /// seconds per stage, peak memory).
@@ -63,6 +69,9 @@ pub enum Status {
     Unsupported,
     /// A bug in dbrg: please report it with the input.
     Internal,
+    /// A file could not be read or written, or is not valid in its format; only the I/O functions
+    /// ([`read_points`], [`write_mesh`], [`Mesh::write`]) give it (`DBRG_IO_ERR_FILE`).
+    File,
     /// A status this binding does not know (from a newer library).
     Other(u32),
 }
@@ -84,7 +93,8 @@ impl Status {
         }
     }
 
-    /// The C value of the status.
+    /// The C value of the status in `dbrg_status`; [`Status::File`], which `dbrg_status` lacks, gives
+    /// its value in `dbrg_io_status`.
     pub fn code(self) -> u32 {
         match self {
             Status::InvalidArgument => sys::DBRG_ERR_INVALID_ARGUMENT,
@@ -97,12 +107,16 @@ impl Status {
             Status::Cancelled => sys::DBRG_ERR_CANCELLED,
             Status::Unsupported => sys::DBRG_ERR_UNSUPPORTED,
             Status::Internal => sys::DBRG_ERR_INTERNAL,
+            Status::File => io_sys::DBRG_IO_ERR_FILE,
             Status::Other(code) => code,
         }
     }
 
     /// The C name, from the library: `"DBRG_ERR_NON_FINITE_INPUT"`.
     pub fn name(self) -> &'static str {
+        if self == Status::File {
+            return "DBRG_IO_ERR_FILE";
+        }
         // SAFETY: dbrg_status_string returns a static NUL-terminated string for any value.
         let name = unsafe { CStr::from_ptr(sys::dbrg_status_string(self.code())) };
         name.to_str().unwrap_or("DBRG_STATUS_UNKNOWN")
@@ -387,6 +401,28 @@ impl<'a> Points<'a> {
     /// The C description of the points.
     pub fn as_raw(&self) -> &sys::dbrg_points {
         &self.raw
+    }
+
+    /// A copy of the points as `f64`, in order.
+    fn to_f64(self) -> Vec<[f64; 3]> {
+        let base = self.raw.data as *const u8;
+        (0..self.raw.count)
+            .map(|i| {
+                // SAFETY: every constructor guarantees 3 readable scalars of the type at each stride step
+                // for 'a (safe ones by construction, from_raw_parts by its contract); unaligned reads
+                // because a byte stride need not keep the scalars aligned.
+                unsafe {
+                    let point = base.add(i * self.raw.stride_bytes);
+                    if self.raw.r#type == sys::DBRG_FLOAT32 {
+                        let p = point as *const f32;
+                        [0, 1, 2].map(|k| f64::from(ptr::read_unaligned(p.add(k))))
+                    } else {
+                        let p = point as *const f64;
+                        [0, 1, 2].map(|k| ptr::read_unaligned(p.add(k)))
+                    }
+                }
+            })
+            .collect()
     }
 }
 
