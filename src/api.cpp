@@ -229,6 +229,10 @@ DBRG_API const uint32_t* dbrg_mesh_triangles(const dbrg_mesh* mesh) {
     return mesh && !mesh->surface.triangles.empty() ? mesh->surface.triangles.data() : nullptr;
 }
 
+DBRG_API const uint8_t* dbrg_mesh_face_flags(const dbrg_mesh* mesh) {
+    return mesh && !mesh->surface.face_flags.empty() ? mesh->surface.face_flags.data() : nullptr;
+}
+
 DBRG_API uint32_t dbrg_mesh_boundary_loop_count(const dbrg_mesh* mesh) {
     return mesh && !mesh->surface.loop_offsets.empty() ? static_cast<uint32_t>(mesh->surface.loop_offsets.size() - 1) : 0;
 }

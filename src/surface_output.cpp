@@ -5,6 +5,8 @@
 #include "core/status.h"
 #include "core/vec3.h"
 
+static_assert(dbrg::FACE_FILLED == DBRG_FACE_FILLED, "the face flags are handed over as they are");
+
 namespace dbrg {
 namespace {
 
@@ -44,7 +46,10 @@ dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& condit
     Array<uint32_t> face_component(context.memory);
     Array<uint8_t> flip(context.memory);
     DBRG_PROPAGATE(find_inward_components(surface, conditioned, progress.part(0.0, 0.4), face_component, flip));
-    if (!result.triangles.reserve(3 * size_t(surface.live_face_count()))) return context.fail_out_of_memory();
+    if (!result.triangles.reserve(3 * size_t(surface.live_face_count())) ||
+        !result.face_flags.reserve(surface.live_face_count())) {
+        return context.fail_out_of_memory();
+    }
     const ProgressSpan writing = progress.part(0.4, 0.7), tracing = progress.part(0.7, 0.9), counting = progress.part(0.9, 1.0);
     for (uint32_t f = 0; f < faces; ++f) {
         DBRG_PROPAGATE(writing.report_at(f, faces));
@@ -53,6 +58,7 @@ dbrg_status emit_surface(const Surface& surface, const ConditionedPoints& condit
         result.triangles.push_back(conditioned.input_index[surface.corner(f, 0)]);
         result.triangles.push_back(conditioned.input_index[surface.corner(f, turn ? 2 : 1)]);
         result.triangles.push_back(conditioned.input_index[surface.corner(f, turn ? 1 : 2)]);
+        result.face_flags.push_back(surface.face_flags(f));
     }
     // Boundary loops, each from its first boundary half-edge. (Only closed components are turned over,
     // and they have no loops.)

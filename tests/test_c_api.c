@@ -267,6 +267,8 @@ static void test_reconstruction(void) {
     CHECK(dbrg_mesh_point_count(mesh) == n);
     CHECK(dbrg_mesh_triangle_count(mesh) == 2 * n - 4); /* a closed sphere: Euler's formula */
     CHECK(is_oriented_manifold(dbrg_mesh_triangles(mesh), dbrg_mesh_triangle_count(mesh), (uint32_t)n));
+    CHECK(dbrg_mesh_face_flags(mesh) != NULL);
+    CHECK(dbrg_mesh_face_flags(NULL) == NULL);
     CHECK(dbrg_mesh_boundary_loop_count(mesh) == 0);
     CHECK(dbrg_mesh_boundary_loop(mesh, 0, &loop_length) == NULL);
     CHECK(loop_length == 0);
@@ -292,6 +294,7 @@ static void test_reconstruction(void) {
     CHECK(strstr(dbrg_mesh_message(mesh), "point 1") != NULL);
     CHECK(dbrg_mesh_triangle_count(mesh) == 0);
     CHECK(dbrg_mesh_triangles(mesh) == NULL);
+    CHECK(dbrg_mesh_face_flags(mesh) == NULL);
     dbrg_mesh_destroy(mesh);
     xyz[5] = saved;
 

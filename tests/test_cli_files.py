@@ -1,5 +1,6 @@
 """The dbrg program's files and exits: outputs replaced only when completely written, outputs checked before
 any work, no abort, and the messages a user reads. Usage: python3 test_cli_files.py PATH_TO_DBRG"""
+import json
 import math
 import os
 import resource
@@ -327,6 +328,52 @@ def read_binary_ply_vertices(path):
 def ply_header(path):
     with open(path, "rb") as f:
         return f.read().split(b"end_header\n")[0].decode()
+
+
+def read_binary_ply_face_flags(path):
+    """The 'flags' byte of each face of a binary little-endian PLY the program wrote (faces of 3 uint
+    corners, then uchar flags)."""
+    names, vertices = read_binary_ply_vertices(path)
+    header = ply_header(path)
+    codes = {"double": "d", "float": "f"}
+    vertex = struct.Struct("<" + "".join(codes[line.split()[1]] for line in header.splitlines()
+                                         if line.startswith("property") and line.split()[2] in names))
+    face_count = int(next(line.split()[2] for line in header.splitlines() if line.startswith("element face")))
+    assert "property list uchar uint vertex_indices\nproperty uchar flags" in header
+    with open(path, "rb") as f:
+        body = f.read().split(b"end_header\n", 1)[1]
+    start = vertex.size * len(vertices)
+    return [body[start + 14 * t + 13] for t in range(face_count)]
+
+
+class FaceFlags(Folder):
+    """The faces hole filling made carry bit 0 of the PLY face property 'flags'; --stats-json counts them."""
+
+    def test_filled_faces_are_flagged(self):
+        code, _, err = run("reconstruct", "--demo", "--demo-shape", "torus", "--demo-points", "3000", "-q",
+                           "--no-normals", "-o", self.path("torus.ply"))
+        self.assertEqual(code, 0, err)
+        _, vertices = read_binary_ply_vertices(self.path("torus.ply"))
+        # Points taken out near one spot of the outer equator leave a hole that filling closes.
+        kept = [v for v in vertices if (v[0] - 1.35) ** 2 + v[1] ** 2 + v[2] ** 2 > 0.2 ** 2]
+        self.assertLess(len(kept), len(vertices))
+        with open(self.path("holed.xyz"), "w") as f:
+            f.writelines("%r %r %r\n" % v[:3] for v in kept)
+        counts = {}
+        for name, extra in (("filled", ()), ("open", ("--no-fill-holes",))):
+            code, _, err = run("reconstruct", self.path("holed.xyz"), "-q", "-o", self.path(name + ".ply"),
+                               "--stats-json", self.path(name + ".json"), *extra)
+            self.assertEqual(code, 0, err)
+            flags = read_binary_ply_face_flags(self.path(name + ".ply"))
+            with open(self.path(name + ".json")) as f:
+                stats = json.load(f)
+            self.assertEqual(len(flags), stats["triangles"])
+            self.assertEqual(sum(1 for b in flags if b & 1), stats["faces_filled"])
+            self.assertTrue(all(b & ~1 == 0 for b in flags))
+            counts[name] = (stats["faces_filled"], stats["holes_filled"])
+        self.assertGreater(counts["filled"][1], 0)
+        self.assertGreater(counts["filled"][0], 0)
+        self.assertEqual(counts["open"][0], 0)
 
 
 class ViewerOutput(Folder):

@@ -75,9 +75,9 @@ void require_valid(const Surface& surface) {
     REQUIRE(valid);
 }
 
-// The live faces, each rotated to start at its smallest corner, with its tetrahedron and for each edge
-// the corners of the twin half-edge (or none): what S is, independent of face ids.
-using FaceKey = std::array<uint32_t, 10>;
+// The live faces, each rotated to start at its smallest corner, with its tetrahedron, its flags and for
+// each edge the corners of the twin half-edge (or none): what S is, independent of face ids.
+using FaceKey = std::array<uint32_t, 11>;
 std::vector<FaceKey> snapshot(const Surface& surface) {
     std::vector<FaceKey> faces;
     for (uint32_t f = 0; f < surface.face_count(); ++f) {
@@ -92,6 +92,7 @@ std::vector<FaceKey> snapshot(const Surface& surface) {
             key[4 + 2 * k] = surface.is_boundary(h) ? NO_HALFEDGE : surface.target(surface.twin(h));
         }
         key[9] = surface.face_tet(f);
+        key[10] = surface.face_flags(f);
         faces.push_back(key);
     }
     std::sort(faces.begin(), faces.end());
@@ -111,16 +112,20 @@ void remove(Surface& surface, FaceJournal& journal, uint32_t f) {
     require_valid(surface);
 }
 
+// Adds an ear, flagged as a fill's ears are.
 void add(Surface& surface, FaceJournal& journal, uint32_t a, uint32_t b, uint32_t c) {
     const uint32_t f = surface.add_face(a, b, c, NO_TET);
     REQUIRE(f != NO_FACE);
+    surface.set_face_flags(f, FACE_FILLED);
     REQUIRE(journal.record_added(surface, f));
     require_valid(surface);
 }
 
 void undo(Surface& surface, FaceJournal& journal, size_t position) {
     const bool undone = journal.undo(surface, position, [&](const FaceJournal::Entry& face) {
-        return surface.add_face(face.corners[0], face.corners[1], face.corners[2], face.tet) != NO_FACE;
+        const uint32_t f = surface.add_face(face.corners[0], face.corners[1], face.corners[2], face.tet);
+        if (f != NO_FACE) surface.set_face_flags(f, face.flags);
+        return f != NO_FACE;
     });
     REQUIRE(undone);
     require_valid(surface);
@@ -128,7 +133,7 @@ void undo(Surface& surface, FaceJournal& journal, size_t position) {
 
 } // namespace
 
-TEST_CASE("an enlargement that removes faces its own fill added is undone exactly") {
+TEST_CASE("an enlargement that removes faces its own fill added is undone exactly, flags included") {
     Memory memory(nullptr);
     Surface surface(memory);
     build_torus(surface);

@@ -1526,6 +1526,62 @@ TEST_CASE("writers refuse vertex properties that do not fit the mesh or a PLY he
     CHECK(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).ok);
 }
 
+TEST_CASE("PLY face properties are read per triangle, a polygon's on each triangle of its fan, and written back the same") {
+    const std::string ascii =
+        "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty uchar flags\nproperty list uchar int vertex_indices\nproperty float weight\n"
+        "property list uchar int ignored_list\nend_header\n"
+        "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 2 0\n"
+        "1 3 0 1 2 0.5 0\n"
+        "254 4 0 2 3 4 -2 1 9\n";
+    const MeshData mesh = read_ok(ascii, MeshFormat::ply_ascii);
+    REQUIRE(mesh.triangle_count() == 3);
+    REQUIRE(mesh.face_properties.size() == 2);
+    CHECK(mesh.properties.empty());
+    CHECK(mesh.face_properties[0].name == "flags");
+    CHECK(mesh.face_properties[0].type == ValueType::uint8);
+    CHECK(mesh.face_properties[1].name == "weight");
+    CHECK(mesh.face_properties[1].type == ValueType::float32);
+    const double flags[3] = {1, 254, 254}, weights[3] = {0.5, -2, -2};
+    for (size_t t = 0; t < 3; ++t) {
+        CHECK(mesh.face_properties[0].value(t) == flags[t]);
+        CHECK(mesh.face_properties[1].value(t) == weights[t]);
+    }
+    for (MeshFormat format : {MeshFormat::ply_binary, MeshFormat::ply_ascii}) {
+        CAPTURE(format_name(format));
+        std::string bytes;
+        REQUIRE(write_mesh_buffer(mesh, format, bytes).ok);
+        const MeshData back = read_ok(bytes, format);
+        CHECK(same_properties(back.face_properties, mesh.face_properties));
+        CHECK(back.triangles == mesh.triangles);
+    }
+    // Triangles from strips have no values: with a tristrips element too, the face values are left out.
+    const std::string with_strips =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nproperty uchar flags\n"
+        "element tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 1\n3 0 2 1\n";
+    const MeshData stripped = read_ok(with_strips, MeshFormat::ply_ascii);
+    CHECK(stripped.triangle_count() == 2);
+    CHECK(stripped.face_properties.empty());
+}
+
+TEST_CASE("writers refuse face properties that do not fit the triangles or a PLY header") {
+    MeshData mesh = float_exact_mesh();
+    REQUIRE(mesh.triangle_count() > 0);
+    std::vector<unsigned char> one_each(mesh.triangle_count(), 1);
+    std::string bytes;
+    mesh.face_properties = {{"flags", ValueType::uint8, one_each}};
+    CHECK(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).ok);
+    mesh.face_properties = {{"vertex_indices", ValueType::uint8, one_each}};
+    CHECK(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).message == "face property 'vertex_indices': the name is taken");
+    one_each.push_back(1);
+    mesh.face_properties = {{"flags", ValueType::uint8, one_each}};
+    CHECK(write_mesh_buffer(mesh, MeshFormat::ply_binary, bytes).message ==
+          "face property 'flags' has " + std::to_string(one_each.size()) + " values for " +
+              std::to_string(mesh.triangle_count()) + " triangles");
+}
+
 TEST_CASE("LAS intensity and colour become ushort PLY properties") {
     LasFile file;
     file.format = 3;

@@ -522,3 +522,67 @@ TEST_CASE("cleaning changes nothing on the vertices of the shared data meshes" *
     }
     CHECK(meshes > 0);
 }
+
+namespace {
+
+// A face by its corners, rotated to start at the smallest: the same face whatever its place in the output.
+std::array<uint32_t, 3> face_key(const std::vector<uint32_t>& triangles, size_t t) {
+    std::array<uint32_t, 3> key{triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    return key;
+}
+
+} // namespace
+
+TEST_CASE("the faces hole filling made are flagged, and only those") {
+    // A torus sample with the points near one spot of its outer equator taken out: growing leaves a hole
+    // there, which filling closes.
+    const std::vector<double> full = samples::sample(samples::Shape::torus, 3000);
+    std::vector<double> xyz;
+    for (size_t i = 0; i < full.size(); i += 3) {
+        const double dx = full[i] - 1.35, dy = full[i + 1], dz = full[i + 2];
+        if (dx * dx + dy * dy + dz * dz > 0.2 * 0.2) xyz.insert(xyz.end(), &full[i], &full[i] + 3);
+    }
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.fill_holes = 0;
+    const test::Reconstruction open = test::reconstruct(xyz, &params);
+    const test::Reconstruction filled = test::reconstruct(xyz);
+    REQUIRE(open.status == DBRG_OK);
+    REQUIRE(filled.status == DBRG_OK);
+    REQUIRE(filled.stats.holes_filled > 0);
+    REQUIRE(open.face_flags.size() == open.triangles.size() / 3);
+    REQUIRE(filled.face_flags.size() == filled.triangles.size() / 3);
+    CHECK(std::count(open.face_flags.begin(), open.face_flags.end(), 0) == long(open.face_flags.size()));
+
+    // What filling started from: the faces growing made, and the vertices it left on a boundary or unused.
+    std::vector<std::array<uint32_t, 3>> grown;
+    std::vector<std::pair<uint32_t, uint32_t>> edges;
+    for (size_t t = 0; t < open.triangles.size() / 3; ++t) {
+        grown.push_back(face_key(open.triangles, t));
+        for (size_t i = 0; i < 3; ++i) edges.emplace_back(open.triangles[3 * t + i], open.triangles[3 * t + (i + 1) % 3]);
+    }
+    std::sort(grown.begin(), grown.end());
+    std::sort(edges.begin(), edges.end());
+    std::vector<uint8_t> at_gap(xyz.size() / 3, 1);
+    for (uint32_t v : open.triangles) at_gap[v] = 0;
+    for (const auto& [a, b] : edges) {
+        if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) at_gap[a] = at_gap[b] = 1;
+    }
+    REQUIRE(open.boundary_loops > 0);
+
+    // Filling changes S only at the gaps: a face it made touches one, and a face growing made is not one of them.
+    size_t flagged = 0, flagged_grown = 0, flagged_away = 0;
+    for (size_t t = 0; t < filled.triangles.size() / 3; ++t) {
+        if ((filled.face_flags[t] & DBRG_FACE_FILLED) == 0) continue;
+        const auto key = face_key(filled.triangles, t);
+        ++flagged;
+        flagged_grown += std::binary_search(grown.begin(), grown.end(), key);
+        flagged_away += !at_gap[key[0]] && !at_gap[key[1]] && !at_gap[key[2]];
+    }
+    CHECK(flagged > 0);
+    CHECK(flagged_grown == 0);
+    CHECK(flagged_away == 0);
+    // The unflagged faces are those growing made, or what flips made of two of them (two for two): no more.
+    CHECK(flagged + grown.size() >= filled.triangles.size() / 3);
+}

@@ -310,6 +310,19 @@ DBRG_API uint32_t dbrg_mesh_triangle_count(const dbrg_mesh* mesh);
  * choice never depends on the input order). NULL when there are no triangles. */
 DBRG_API const uint32_t* dbrg_mesh_triangles(const dbrg_mesh* mesh);
 
+/* Bits of dbrg_mesh_face_flags (since 0.4.0); bits not named here are 0. */
+typedef enum dbrg_face_flag {
+    DBRG_FACE_FILLED = 1 /* made by hole filling over a gap in the sample (params->fill_holes), not grown
+                            from it: a Delaunay triangle attached over a hole, an ear, a face closing the
+                            cut of a small handle, or a face that an edge flip made from such a face */
+} dbrg_face_flag;
+
+/* Returns dbrg_mesh_triangle_count bytes (since 0.4.0), one per triangle of dbrg_mesh_triangles in the
+ * same order, each a combination of dbrg_face_flag bits: which triangles were invented rather than
+ * grown. All 0 with params->fill_holes = 0 and for points all in one plane.
+ * NULL when mesh is NULL or there are no triangles. */
+DBRG_API const uint8_t* dbrg_mesh_face_flags(const dbrg_mesh* mesh);
+
 /* Returns the number of boundary loops (open-surface borders and holes left open). */
 DBRG_API uint32_t dbrg_mesh_boundary_loop_count(const dbrg_mesh* mesh);
 

@@ -29,7 +29,8 @@ const char* const RECONSTRUCT_USAGE =
     ".xyz .pts .las; only the vertices are read) and writes it to OUTPUT (.ply binary, .obj, .off, .stl) with\n"
     "every input point as a vertex, in input order, and in .ply and .obj each vertex's normal (pointing\n"
     "to the outside of closed surfaces). A .ply OUTPUT also carries the input's other vertex properties\n"
-    "(colours, intensity, ...; LAS intensity and colour). OUTPUT is replaced only once it is completely\n"
+    "(colours, intensity, ...; LAS intensity and colour) and, per face, 'uchar flags' (bit 0: the face was\n"
+    "made by hole filling, not grown from the points). OUTPUT is replaced only once it is completely\n"
     "written.\n"
     "\n"
     "  -o, --output FILE        the mesh to write (required)\n"
@@ -161,6 +162,14 @@ struct SnapshotFiles {
     }
 };
 
+// The triangles hole filling made.
+uint32_t faces_filled(const dbrg_mesh* mesh) {
+    const uint8_t* flags = dbrg_mesh_face_flags(mesh);
+    uint32_t count = 0;
+    for (uint32_t t = 0; flags && t < dbrg_mesh_triangle_count(mesh); ++t) count += (flags[t] & DBRG_FACE_FILLED) ? 1 : 0;
+    return count;
+}
+
 std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double seconds_read, double seconds_write) {
     io::JsonObject json;
     json.add_unsigned("points", s.input_points)
@@ -186,6 +195,7 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_unsigned("hole_triangles_delaunay", s.hole_triangles_delaunay)
         .add_unsigned("hole_triangles_added", s.hole_triangles_added)
         .add_unsigned("hole_triangles_removed", s.hole_triangles_removed)
+        .add_unsigned("faces_filled", faces_filled(mesh))
         .add_unsigned("handles_removed", s.handles_removed)
         .add_unsigned("outliers", s.outliers)
         .add_unsigned("near_duplicates_merged", s.near_duplicates_merged)
@@ -264,7 +274,9 @@ int run_reconstruct(int argc, char** argv) {
         const io::IoStatus read = io::read_mesh(input, mesh);
         if (!read) return report_error(EXIT_FAILED, read.message);
         // The surface's normals replace the input's; its other vertex properties go to the output as read.
+        // Its faces, if any, are not the surface's: their values go.
         mesh.normals.clear();
+        mesh.face_properties.clear();
     }
     const double seconds_read = seconds_now() - start;
 
@@ -293,6 +305,9 @@ int run_reconstruct(int argc, char** argv) {
     const uint32_t* triangles = dbrg_mesh_triangles(result);
     mesh.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(result)));
     mesh.has_faces = true;
+    const uint8_t* flags = dbrg_mesh_face_flags(result);
+    mesh.face_properties = {{"flags", io::ValueType::uint8, {}}};
+    mesh.face_properties[0].bytes.assign(flags, flags + (flags ? mesh.triangle_count() : 0));
     if (const double* smoothed = dbrg_mesh_smoothed_points(result)) {
         mesh.positions.assign(smoothed, smoothed + mesh.positions.size());
     }

@@ -145,6 +145,8 @@ dbrg_status EdgeFlipper::flip(uint32_t halfedge, uint32_t tet, double& radius_su
     const uint32_t a = surface_.origin(halfedge), b = surface_.target(halfedge);
     const uint32_t c = surface_.target(Surface::next(halfedge)), d = surface_.target(Surface::next(surface_.twin(halfedge)));
     radius_sum -= face_radius(delaunay_, surface_, face) + face_radius(delaunay_, surface_, other);
+    // The new pair covers what the old one did: each is as invented as either face it replaces.
+    const uint8_t flags = surface_.face_flags(face) | surface_.face_flags(other);
     if (!surface_.remove_face(face) || !surface_.remove_face(other)) return context_.fail_out_of_memory();
     const uint32_t added[2][3] = {{c, a, d}, {d, b, c}};
     for (const auto& corners : added) {
@@ -155,6 +157,7 @@ dbrg_status EdgeFlipper::flip(uint32_t halfedge, uint32_t tet, double& radius_su
         }
         const uint32_t f = surface_.add_face(corners[0], corners[1], corners[2], tet, check);
         if (f == NO_FACE) return context_.fail_out_of_memory();
+        surface_.set_face_flags(f, flags);
         radius_sum += face_radius(delaunay_, surface_, f);
         if (observer_) DBRG_PROPAGATE(observer_(observer_user_, surface_, points_reached(delaunay_, surface_)));
     }

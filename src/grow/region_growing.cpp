@@ -407,6 +407,7 @@ dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after)
 dbrg_status RegionGrower::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck* check) {
     const uint32_t f = check ? surface_.add_face(a, b, c, tet, *check) : surface_.add_face(a, b, c, tet);
     if (f == NO_FACE) return context_.fail_out_of_memory();
+    surface_.set_face_flags(f, new_face_flags_);
     const double *pa = delaunay_.point(a), *pb = delaunay_.point(b), *pc = delaunay_.point(c);
     const double r = circumradius(pa, pb, pc);
     radius_sum_ += r;
@@ -425,6 +426,7 @@ dbrg_status RegionGrower::report_step() const {
 
 dbrg_status RegionGrower::regrow_holes(const ProgressSpan& progress) {
     local_boundary_test_ = true;
+    new_face_flags_ = FACE_FILLED;
     const uint32_t before = surface_.live_face_count();
     const uint32_t halfedges = 3 * surface_.face_count();
     const ProgressSpan proposing = progress.part(0, REGROW_PROGRESS_GROWING);
@@ -439,6 +441,7 @@ dbrg_status RegionGrower::regrow_holes(const ProgressSpan& progress) {
     const uint32_t after = surface_.live_face_count();
     context_.stats.hole_triangles_delaunay += after > before ? after - before : 0;
     local_boundary_test_ = false;
+    new_face_flags_ = 0;
     return DBRG_OK;
 }
 

@@ -42,7 +42,8 @@ public:
     // triangles before ears. Here the open-surface test (§4) weighs each candidate against the faces
     // around its edge's ends rather than the whole surface: inside a hole, the triangles at hand set the
     // scale, while the mean over the surface refuses the ordinary triangles of an unevenly sampled closed
-    // object's sparse parts. Adds context.stats.hole_triangles_delaunay. Reports to `progress`.
+    // object's sparse parts. The faces it adds are marked FACE_FILLED. Adds context.stats.hole_triangles_delaunay.
+    // Reports to `progress`.
     dbrg_status regrow_holes(const ProgressSpan& progress);
 
     // Flips the edges that growing's flips passed over because a corner was on the boundary of S, and
@@ -110,6 +111,7 @@ private:
     Examined examined_[EXAMINED_KEPT];
     uint32_t examined_next_ = 0;
     bool local_boundary_test_ = false;  // regrow_holes: §4 against the faces around the edge
+    uint8_t new_face_flags_ = 0;        // FACE_* bits of the faces added: FACE_FILLED in regrow_holes
     EdgeFlipper flipper_;
 };
 

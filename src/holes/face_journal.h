@@ -21,6 +21,7 @@ public:
         uint32_t corners[3];
         uint32_t tet;
         uint8_t causes[3];  // the caller's per-edge marks of a removed face, handed back when it is restored
+        uint8_t flags;      // the face's FACE_* bits, handed back with it
         bool removed;       // a removal; otherwise an addition
     };
 
@@ -80,6 +81,7 @@ private:
             entry.causes[i] = causes[i];
         }
         entry.tet = surface.face_tet(f);
+        entry.flags = surface.face_flags(f);
         entry.removed = removed;
         if (!entries_.push_back(entry)) return false;
         ++(removed ? removed_ : added_);

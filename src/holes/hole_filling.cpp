@@ -215,7 +215,7 @@ dbrg_status HoleFiller::clip_ears(Array<uint32_t>& corners, FaceJournal& journal
         }
         if (best == n) return DBRG_OK;
         const uint32_t apex = corners[best];
-        DBRG_PROPAGATE(add_face(apex, corners[(best + n - 1) % n], corners[(best + 1) % n], NO_TET, nullptr, &journal));
+        DBRG_PROPAGATE(add_face(apex, corners[(best + n - 1) % n], corners[(best + 1) % n], NO_TET, nullptr, FACE_FILLED, &journal));
         if (n == 3) break;
         for (size_t i = best; i + 1 < n; ++i) corners[i] = corners[i + 1];
         corners.pop_back();
@@ -284,20 +284,22 @@ bool HoleFiller::record_removed(uint32_t f, FaceJournal& journal) const {
     return journal.record_removed(surface_, f, causes);
 }
 
-// Takes back the journal's entries from `position` on; restored faces get their open-surface marks back.
+// Takes back the journal's entries from `position` on; restored faces get their open-surface marks and
+// their flags back (a grown face put back is no filled one).
 dbrg_status HoleFiller::undo(FaceJournal& journal, size_t position) {
     const bool undone = journal.undo(surface_, position, [&](const FaceJournal::Entry& face) {
-        return add_face(face.corners[0], face.corners[1], face.corners[2], face.tet, face.causes, nullptr) == DBRG_OK;
+        return add_face(face.corners[0], face.corners[1], face.corners[2], face.tet, face.causes, face.flags, nullptr) == DBRG_OK;
     });
     if (undone) return DBRG_OK;
     return context_.memory.failed() ? context_.fail_out_of_memory()
                                     : context_.fail(DBRG_ERR_INTERNAL, "undoing a hole filling did not find a face it had added");
 }
 
-dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes,
+dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, uint8_t flags,
                                  FaceJournal* journal) {
     const uint32_t f = surface_.add_face(a, b, c, tet);
     if (f == NO_FACE) return context_.fail_out_of_memory();
+    surface_.set_face_flags(f, flags);
     for (uint32_t i = 0; i < 3; ++i) {
         if (!restored_open_.push_back(causes ? causes[i] : 0)) return context_.fail_out_of_memory();
     }

@@ -110,7 +110,9 @@ private:
     dbrg_status remove_and_record(uint32_t face, FaceJournal& journal);
     bool record_removed(uint32_t face, FaceJournal& journal) const;
     dbrg_status undo(FaceJournal& journal, size_t position);
-    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, FaceJournal* journal);
+    // Adds face (a, b, c) with FACE_* bits `flags`, recording it in `journal` when there is one.
+    dbrg_status add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const uint8_t* causes, uint8_t flags,
+                         FaceJournal* journal);
     Vec3 vertex_normal(uint32_t v) const;
 
     const Tetrahedralization& delaunay_;

@@ -41,20 +41,20 @@ IoStatus without_exceptions(Action&& action) {
     }
 }
 
-// Each vertex property has a value per vertex and a name a PLY header can hold, used once and by none of
-// the values the writer writes itself.
-IoStatus check_properties(const MeshData& mesh) {
-    std::unordered_set<std::string> names = {"x", "y", "z", "nx", "ny", "nz"};
-    for (const VertexProperty& property : mesh.properties) {
-        const std::string quoted = "vertex property '" + property.name + "'";
-        if (property.name.empty()) return IoStatus::failure("a vertex property has no name");
+// Each property of an element (vertex or face) has a value per item and a name a PLY header can hold,
+// used once and by none of the values the writer writes itself (`reserved`).
+IoStatus check_properties(const std::vector<VertexProperty>& properties, const char* element, size_t count,
+                          std::unordered_set<std::string> names) {
+    for (const VertexProperty& property : properties) {
+        const std::string quoted = std::string(element) + " property '" + property.name + "'";
+        if (property.name.empty()) return IoStatus::failure(std::string("a ") + element + " property has no name");
         for (char c : property.name) {
             if (static_cast<unsigned char>(c) <= ' ' || c == '\x7f') return IoStatus::failure(quoted + ": a name holds no blank or control character");
         }
         if (!names.insert(property.name).second) return IoStatus::failure(quoted + ": the name is taken");
-        if (property.bytes.size() != mesh.vertex_count() * value_size(property.type)) {
+        if (property.bytes.size() != count * value_size(property.type)) {
             return IoStatus::failure(quoted + " has " + std::to_string(property.bytes.size() / value_size(property.type)) +
-                                     " values for " + std::to_string(mesh.vertex_count()) + " vertices");
+                                     " values for " + std::to_string(count) + " " + (element[0] == 'v' ? "vertices" : "triangles"));
         }
     }
     return IoStatus::success();
@@ -66,7 +66,9 @@ IoStatus check_mesh(const MeshData& mesh) {
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
         return IoStatus::failure("the normal array's length differs from the position array's");
     }
-    IoStatus status = check_properties(mesh);
+    IoStatus status = check_properties(mesh.properties, "vertex", mesh.vertex_count(), {"x", "y", "z", "nx", "ny", "nz"});
+    if (!status) return status;
+    status = check_properties(mesh.face_properties, "face", mesh.triangle_count(), {"vertex_indices", "vertex_index"});
     if (!status) return status;
     if (mesh.triangle_count() > std::numeric_limits<uint32_t>::max()) return IoStatus::failure("too many triangles to write");
     const size_t vertex_count = mesh.vertex_count();

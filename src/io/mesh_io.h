@@ -25,7 +25,8 @@ enum class ValueType : uint8_t { int8, uint8, int16, uint16, int32, uint32, floa
 size_t value_size(ValueType type);
 
 // A per-vertex value besides position and normal: a colour channel, an intensity, a confidence. Carried
-// from the readers that know them (PLY, LAS) to the PLY writer under the same name and type.
+// from the readers that know them (PLY, LAS) to the PLY writer under the same name and type. A per-face
+// value (MeshData::face_properties) is held the same way, one value per triangle.
 struct VertexProperty {
     std::string name;
     ValueType type = ValueType::float32;
@@ -50,6 +51,10 @@ struct MeshData {
     // element's other scalar properties, the LAS reader with intensity and colour; the PLY writer writes
     // them after x y z and the normals. Other writers leave them out.
     std::vector<VertexProperty> properties;
+    // Per-triangle values, each with one value per triangle: the PLY reader fills them from the face
+    // element's scalar properties (a polygon's value repeated for each triangle of its fan; tristrips have
+    // none), the PLY writer writes them after vertex_indices. Other formats leave them out.
+    std::vector<VertexProperty> face_properties;
     bool has_faces = false;           // the file declares faces (a PLY face element, OBJ f lines, ...), even zero
     // Where the first NaN or infinite vertex coordinate is, in the words of the readers' messages ("line 7"
     // in a text format, "byte offset 1234" in a binary one), or empty when all are finite: a caller that
@@ -105,8 +110,9 @@ IoStatus read_mesh_buffer(const void* data, size_t size, MeshFormat format, Mesh
 // that was there untouched. Positions round-trip exactly through every format except STL, which stores
 // float32 (exact for coordinates that are floats already). XYZ writes the points only; normals go to PLY
 // (float nx ny nz) and OBJ (vn lines, faces as v//vn) and round-trip exactly through PLY, as do the vertex
-// properties, which only PLY writes. Refused: a normal or property array whose length does not match the
-// vertices, a property name that is empty, holds a blank, repeats or is one of x y z nx ny nz.
+// properties and face properties, which only PLY writes. Refused: a normal or property array whose length
+// does not match the vertices (the triangles for a face property), a property name that is empty, holds a
+// blank, repeats or is one of x y z nx ny nz (vertex_indices vertex_index for a face property).
 IoStatus write_mesh(const std::string& path, const MeshData& mesh, MeshFormat format);
 
 // As write_mesh, with the format chosen by the extension of `path`.

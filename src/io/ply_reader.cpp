@@ -1,12 +1,14 @@
 // PLY reader: ascii, binary little- and big-endian; vertex x/y/z, nx/ny/nz and every other scalar vertex
 // property (colours, intensity, confidence, ...), face lists and triangle strips.
 //
-// The vertex element's other scalar properties become MeshData::properties with their names and types;
-// the rest (vertex lists, other elements, face properties besides vertex_indices or vertex_index, and
-// tristrips besides vertex_indices) is read past and ignored. Counts in the header are checked against the
+// The vertex element's other scalar properties become MeshData::properties with their names and types,
+// the face element's become MeshData::face_properties (none when the file has tristrips too, whose
+// triangles have no values); the rest (lists besides the corners, other elements, tristrips besides
+// vertex_indices) is read past and ignored. Counts in the header are checked against the
 // bytes that follow before anything is reserved, so a lying header fails at once instead of allocating;
 // when the input's size is unknown (a pipe), nothing is reserved for them and the data runs out as it is
 // read.
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -46,7 +48,7 @@ bool find_type(std::string_view name, ValueType& type) {
 bool is_integer(ValueType type) { return type != ValueType::float32 && type != ValueType::float64; }
 
 // What the reader does with a property's values: skip them, fill a vertex value, take them as corner
-// indices, or carry them as a vertex property.
+// indices, or carry them as a vertex or face property.
 enum class Role : uint8_t { skip, x, y, z, nx, ny, nz, corners, carry };
 
 // The vertex values a Role from x to nz fills, in that order.
@@ -59,7 +61,7 @@ struct Property {
     bool is_list = false;
     ValueType count_type = ValueType::uint8;
     Role role = Role::skip;
-    size_t carried = 0;  // Role::carry: its index in MeshData::properties
+    size_t carried = 0;  // Role::carry: its index in MeshData::properties or face_properties
 };
 
 enum class ElementKind : uint8_t { other, vertex, face, tristrips };
@@ -107,7 +109,8 @@ IoStatus assign_role(const Element& element, const std::unordered_set<std::strin
         property.role = static_cast<Role>(static_cast<int>(Role::x) + k);
     }
     const bool corner_name = name == "vertex_indices" || (element.kind == ElementKind::face && name == "vertex_index");
-    if (element.kind == ElementKind::vertex && !property.is_list && property.role == Role::skip) property.role = Role::carry;
+    const bool carried_kind = element.kind == ElementKind::vertex || element.kind == ElementKind::face;
+    if (carried_kind && !property.is_list && property.role == Role::skip) property.role = Role::carry;
     if ((element.kind == ElementKind::face || element.kind == ElementKind::tristrips) && corner_name) {
         if (!property.is_list) return header_error(line, "'" + name + "' of element '" + element.name + "' is not a list");
         if (!is_integer(property.type)) return header_error(line, "the vertex indices of '" + element.name + "' are not integers");
@@ -443,7 +446,15 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
     auto fail = [&](const std::string& what) { return IoStatus::failure("PLY " + source.place() + ": " + what); };
     CornerDecoder corners(header.vertex_count, out.triangles);
     std::string error;
+    std::vector<double> face_values(out.face_properties.size(), 0.0);  // the current face's, by Property::carried
     for (const Element& element : header.elements) {
+        const auto carried = [&](const Property& property) -> VertexProperty& {
+            return element.kind == ElementKind::vertex ? out.properties[property.carried] : out.face_properties[property.carried];
+        };
+        const auto not_a = [&](const Property& property, uint64_t item, double value) {
+            return fail(element.name + " " + std::to_string(item) + ": property " + quote_token(property.name) + " holds " +
+                        value_text(value) + ", not a " + ply_type_name(property.type));
+        };
         if (element.properties.empty() || element.count == 0) continue;
         size_t min_bytes = 0, min_tokens = 0;
         minimum_item_size(element, min_bytes, min_tokens);
@@ -458,7 +469,7 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
         if (is_vertex) out.positions.reserve(3 * reserved);
         if (is_vertex && header.has_normals) out.normals.reserve(3 * reserved);
         for (const Property& property : element.properties) {
-            if (property.role == Role::carry) out.properties[property.carried].bytes.reserve(reserved * value_size(property.type));
+            if (property.role == Role::carry) carried(property).bytes.reserve(reserved * value_size(property.type));
         }
         if (element.kind == ElementKind::face) out.triangles.reserve(out.triangles.size() + 3 * reserved);
         for (uint64_t item = 0; item < element.count; ++item) {
@@ -473,10 +484,8 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
                     if (property.role == Role::carry) {
                         double value = 0.0;
                         if (!source.read_number(property.type, value)) return fail(source.error());
-                        if (!out.properties[property.carried].append(value)) {
-                            return fail("vertex " + std::to_string(item) + ": property " + quote_token(property.name) + " holds " +
-                                        value_text(value) + ", not a " + ply_type_name(property.type));
-                        }
+                        if (is_vertex && !carried(property).append(value)) return not_a(property, item, value);
+                        if (!is_vertex) face_values[property.carried] = value;
                         continue;
                     }
                     const size_t slot = static_cast<size_t>(property.role) - static_cast<size_t>(Role::x);
@@ -505,7 +514,17 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
                 for (size_t k = 3; k < VERTEX_VALUES; ++k) out.normals.push_back(static_cast<float>(values[k]));
             }
             if (element.kind == ElementKind::face || element.kind == ElementKind::tristrips) {
+                const size_t before = out.triangle_count();
                 if (!corners.end(error)) return fail(element.name + " " + std::to_string(item) + ": " + error);
+                // Each triangle of the face's fan takes the face's values.
+                for (const Property& property : element.properties) {
+                    if (property.role != Role::carry) continue;
+                    for (size_t t = before; t < out.triangle_count(); ++t) {
+                        if (!carried(property).append(face_values[property.carried])) {
+                            return not_a(property, item, face_values[property.carried]);
+                        }
+                    }
+                }
             }
         }
     }
@@ -521,8 +540,9 @@ IoStatus read_ply(ByteSource& source, MeshData& out) {
     for (Element& element : header.elements) {
         for (Property& property : element.properties) {
             if (property.role != Role::carry) continue;
-            property.carried = out.properties.size();
-            out.properties.push_back({property.name, property.type, {}});
+            std::vector<VertexProperty>& carried = element.kind == ElementKind::vertex ? out.properties : out.face_properties;
+            property.carried = carried.size();
+            carried.push_back({property.name, property.type, {}});
         }
     }
     for (const Element& element : header.elements) {
@@ -530,10 +550,15 @@ IoStatus read_ply(ByteSource& source, MeshData& out) {
     }
     if (header.encoding == Encoding::ascii) {
         AsciiSource body(source, header.header_lines);
-        return read_body(header, body, out);
+        status = read_body(header, body, out);
+    } else {
+        BinarySource body(source, header.encoding == Encoding::binary_big);
+        status = read_body(header, body, out);
     }
-    BinarySource body(source, header.encoding == Encoding::binary_big);
-    return read_body(header, body, out);
+    // Triangles from strips have no face values: the values then say nothing about the triangles as a whole.
+    const auto per_triangle = [&](const VertexProperty& property) { return property.size() == out.triangle_count(); };
+    if (!std::all_of(out.face_properties.begin(), out.face_properties.end(), per_triangle)) out.face_properties.clear();
+    return status;
 }
 
 } // namespace dbrg::io

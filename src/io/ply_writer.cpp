@@ -1,6 +1,6 @@
 // PLY writer: binary little-endian or ascii, float32 coordinates when that loses nothing (always for input
 // read as float32), else float64; float32 normals when the mesh has them; then the vertex properties,
-// each with its own name and type.
+// each with its own name and type; the face properties after each face's vertex_indices.
 #include <cmath>
 #include <cstring>
 
@@ -45,16 +45,17 @@ bool host_is_little_endian() {
     return first == 1;
 }
 
-// The value of `vertex` as little-endian bytes (properties hold them in the machine's order).
-void append_binary_value(std::string& out, const VertexProperty& property, size_t vertex, bool little_endian_host) {
+// The value of item `item` (a vertex or a triangle) as little-endian bytes (properties hold them in the
+// machine's order).
+void append_binary_value(std::string& out, const VertexProperty& property, size_t item, bool little_endian_host) {
     const size_t size = value_size(property.type);
-    const unsigned char* value = property.bytes.data() + vertex * size;
+    const unsigned char* value = property.bytes.data() + item * size;
     for (size_t i = 0; i < size; ++i) out.push_back(static_cast<char>(value[little_endian_host ? i : size - 1 - i]));
 }
 
 // A property's value as text: integers as integers, floats as their shortest exact text.
-void append_text_value(std::string& out, const VertexProperty& property, size_t vertex) {
-    const double value = property.value(vertex);
+void append_text_value(std::string& out, const VertexProperty& property, size_t item) {
+    const double value = property.value(item);
     if (property.type == ValueType::float32) {
         const float narrow = static_cast<float>(value);
         append_values(out, &narrow, 1);
@@ -76,6 +77,20 @@ void append_vertex_line(std::string& out, const MeshData& mesh, size_t v) {
     for (const VertexProperty& property : mesh.properties) {
         out.push_back(' ');
         append_text_value(out, property, v);
+    }
+    out.push_back('\n');
+}
+
+// "3 a b c [properties]" of triangle t, ending the line.
+void append_face_line(std::string& out, const MeshData& mesh, size_t t) {
+    out += "3";
+    for (size_t k = 0; k < 3; ++k) {
+        out.push_back(' ');
+        append_unsigned(out, mesh.triangles[3 * t + k]);
+    }
+    for (const VertexProperty& property : mesh.face_properties) {
+        out.push_back(' ');
+        append_text_value(out, property, t);
     }
     out.push_back('\n');
 }
@@ -102,12 +117,15 @@ void write_ply(const MeshData& mesh, bool binary, std::string& out) {
         out += "\nelement face ";
         append_unsigned(out, mesh.triangle_count());
         out += "\nproperty list uchar uint vertex_indices";
+        for (const VertexProperty& property : mesh.face_properties) {
+            out += std::string("\nproperty ") + ply_type_name(property.type) + " " + property.name;
+        }
     }
     out += "\nend_header\n";
 
     if (binary) {
         out.reserve(out.size() + mesh.positions.size() * (as_float ? 4 : 8) + mesh.normals.size() * 4 +
-                    mesh.vertex_count() * property_bytes + mesh.triangle_count() * 13);
+                    mesh.vertex_count() * property_bytes + mesh.triangle_count() * (13 + mesh.face_properties.size() * 8));
         const bool little_endian_host = host_is_little_endian();
         for (size_t v = 0; v < mesh.vertex_count(); ++v) {
             for (size_t k = 0; k < 3; ++k) append_binary_coordinate(out, mesh.positions[3 * v + k], as_float);
@@ -119,11 +137,12 @@ void write_ply(const MeshData& mesh, bool binary, std::string& out) {
         for (size_t t = 0; t < mesh.triangle_count(); ++t) {
             out.push_back(3);
             for (size_t k = 0; k < 3; ++k) append_little_endian(out, mesh.triangles[3 * t + k]);
+            for (const VertexProperty& property : mesh.face_properties) append_binary_value(out, property, t, little_endian_host);
         }
         return;
     }
     for (size_t v = 0; v < mesh.vertex_count(); ++v) append_vertex_line(out, mesh, v);
-    append_triangle_lines(out, mesh);
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) append_face_line(out, mesh, t);
 }
 
 } // namespace dbrg::io

@@ -9,12 +9,13 @@
 namespace dbrg {
 
 Surface::Surface(Memory& memory)
-    : corners_(memory), twins_(memory), tets_(memory), vertex_halfedge_(memory), pinched_(memory), extra_fans_(memory) {}
+    : corners_(memory), twins_(memory), tets_(memory), flags_(memory), vertex_halfedge_(memory), pinched_(memory), extra_fans_(memory) {}
 
 bool Surface::reset(uint32_t vertex_count) {
     corners_.clear();
     twins_.clear();
     tets_.clear();
+    flags_.clear();
     extra_fans_.clear();
     pinched_vertices_ = 0;
     used_vertices_ = 0;
@@ -102,7 +103,8 @@ uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
 
 uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck& check) {
     const uint32_t f = face_count();
-    if (!corners_.reserve(corners_.size() + 3) || !twins_.reserve(twins_.size() + 3) || !tets_.reserve(tets_.size() + 1)) {
+    if (!corners_.reserve(corners_.size() + 3) || !twins_.reserve(twins_.size() + 3) || !tets_.reserve(tets_.size() + 1) ||
+        !flags_.reserve(flags_.size() + 1)) {
         return NO_FACE;
     }
     const uint32_t corners[3] = {a, b, c};
@@ -119,6 +121,7 @@ uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, con
         if (shared[i] != NO_HALFEDGE) twins_[shared[i]] = 3 * f + i;
     }
     tets_.push_back(tet);
+    flags_.push_back(0);
     for (uint32_t i = 0; i < 3; ++i) {
         const uint32_t p = corners[i], leaving = 3 * f + i;
         const uint32_t entering_x = shared[i], leaving_y = shared[(i + 2) % 3];

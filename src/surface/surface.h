@@ -17,6 +17,9 @@ namespace dbrg {
 constexpr uint32_t NO_HALFEDGE = UINT32_MAX;
 constexpr uint32_t NO_FACE = UINT32_MAX;
 
+// Per-face flag bits, with the values of dbrg_face_flag (dbrg.h).
+constexpr uint8_t FACE_FILLED = 1;  // made by hole filling, not grown from the sample
+
 // What adding a face would do to the topology of S.
 struct FaceCheck {
     enum Verdict {
@@ -50,7 +53,7 @@ public:
 
     // Makes room for `faces` faces in one allocation. Returns false on allocation failure.
     bool reserve_faces(size_t faces) {
-        return corners_.reserve(3 * faces) && twins_.reserve(3 * faces) && tets_.reserve(faces);
+        return corners_.reserve(3 * faces) && twins_.reserve(3 * faces) && tets_.reserve(faces) && flags_.reserve(faces);
     }
 
     // Face slots, removed ones included.
@@ -71,6 +74,9 @@ public:
     uint32_t corner(uint32_t f, uint32_t i) const { return corners_[3 * size_t(f) + i]; }
     uint32_t face_tet(uint32_t f) const { return tets_[f]; }
     bool face_removed(uint32_t f) const { return twins_[3 * size_t(f)] == REMOVED; }
+    // The FACE_* bits of face f: 0 when added, kept when it is removed (so an undo can hand them back).
+    uint8_t face_flags(uint32_t f) const { return flags_[f]; }
+    void set_face_flags(uint32_t f, uint8_t flags) { flags_[f] = flags; }
 
     // An outgoing half-edge of v, its first fan's outgoing boundary half-edge when v is on the boundary;
     // NO_HALFEDGE when v has no face.
@@ -181,6 +187,7 @@ private:
     Array<uint32_t> corners_;          // 3 per face
     Array<uint32_t> twins_;            // 3 per face
     Array<uint32_t> tets_;             // 1 per face
+    Array<uint8_t> flags_;             // 1 per face: FACE_* bits
     Array<uint32_t> vertex_halfedge_;  // 1 per vertex
     Array<uint8_t> pinched_;           // 1 per vertex: has entries in extra_fans_
     Array<ExtraFan> extra_fans_;       // second and later fans of pinched vertices

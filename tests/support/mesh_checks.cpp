@@ -31,6 +31,8 @@ Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params)
     REQUIRE(mesh != nullptr);
     const uint32_t* triangles = dbrg_mesh_triangles(mesh);
     result.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
+    const uint8_t* flags = dbrg_mesh_face_flags(mesh);
+    if (flags) result.face_flags.assign(flags, flags + dbrg_mesh_triangle_count(mesh));
     result.boundary_loops = dbrg_mesh_boundary_loop_count(mesh);
     result.stats.struct_size = sizeof result.stats;
     dbrg_mesh_stats(mesh, &result.stats);

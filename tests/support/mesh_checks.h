@@ -13,6 +13,7 @@ namespace dbrg::test {
 struct Reconstruction {
     dbrg_status status = DBRG_OK;
     std::vector<uint32_t> triangles;
+    std::vector<uint8_t> face_flags;  // dbrg_mesh_face_flags, one per triangle
     uint32_t boundary_loops = 0;
     dbrg_stats stats{};
 };

@@ -32,7 +32,7 @@ LibraryError.__module__ = __name__
 
 __all__ = [
     "reconstruct", "delaunay", "validate_points", "read_points", "library_version", "library_path",
-    "Mesh", "Delaunay", "STAGES",
+    "Mesh", "Delaunay", "STAGES", "FACE_FILLED",
     "Error", "InvalidArgumentError", "InvalidParameterError", "NonFiniteInputError", "TooFewPointsError",
     "DegenerateInputError", "TooManyPointsError", "OutOfMemoryError", "CancelledError", "UnsupportedError",
     "InternalError", "LibraryError",
@@ -50,6 +50,7 @@ _CLEANING = {"auto": _capi.ENUMS["dbrg_cleaning"]["DBRG_CLEANING_AUTO"],
              "off": _capi.ENUMS["dbrg_cleaning"]["DBRG_CLEANING_OFF"],
              "on": _capi.ENUMS["dbrg_cleaning"]["DBRG_CLEANING_ON"]}
 _OK = _capi.ENUMS["dbrg_status"]["DBRG_OK"]
+FACE_FILLED = _capi.ENUMS["dbrg_face_flag"]["DBRG_FACE_FILLED"]
 _UINT32_MAX = 0xFFFFFFFF
 
 
@@ -326,13 +327,15 @@ class Mesh:
     outliers       uint32 array: the input points left out as outliers, ascending.
     smoothed_points (N, 3) float64 positions the points were smoothed to (input positions for duplicates
                    and outliers), or None unless output_smoothed was asked and the points were smoothed.
+    face_flags     (M,) uint8, one per triangle: FACE_FILLED (bit 0) set on the triangles hole filling
+                   made rather than growing from the points; all 0 with fill_holes=False.
     """
 
     __slots__ = ("vertices", "triangles", "boundary_loops", "stats", "point_count", "warning", "outliers",
-                 "smoothed_points", "_vertex_normals")
+                 "smoothed_points", "face_flags", "_vertex_normals")
 
     def __init__(self, vertices, triangles, boundary_loops, stats, point_count, warning="", outliers=None,
-                 smoothed_points=None):
+                 smoothed_points=None, face_flags=None):
         self.vertices = vertices
         self.triangles = triangles
         self.boundary_loops = boundary_loops
@@ -341,6 +344,7 @@ class Mesh:
         self.warning = warning
         self.outliers = np.empty(0, dtype=np.uint32) if outliers is None else outliers
         self.smoothed_points = smoothed_points
+        self.face_flags = np.zeros(len(triangles), dtype=np.uint8) if face_flags is None else face_flags
         self._vertex_normals = None
 
     def _arrays(self):
@@ -485,7 +489,10 @@ def _mesh(lib, handle, points):
     smoothed_points = np.ctypeslib.as_array(smoothed, shape=(point_count, 3)).copy() if smoothed else None
     # The mesh's vertices are where its surface passes: the smoothed positions when they were asked for.
     vertices = np.array(points) if smoothed_points is None else smoothed_points
-    return Mesh(vertices, triangles, loops, _stats_dict(lib, handle), point_count, warning, outliers, smoothed_points)
+    flags = lib.dbrg_mesh_face_flags(handle)
+    face_flags = np.ctypeslib.as_array(flags, shape=(count,)).copy() if flags else np.zeros(count, dtype=np.uint8)
+    return Mesh(vertices, triangles, loops, _stats_dict(lib, handle), point_count, warning, outliers, smoothed_points,
+                face_flags)
 
 
 # ---------------------------------------------------------------------------------------------------

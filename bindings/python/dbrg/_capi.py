@@ -62,6 +62,9 @@ ENUMS = {
         "DBRG_CLEANING_OFF": 1,
         "DBRG_CLEANING_ON": 2,
     },
+    "dbrg_face_flag": {
+        "DBRG_FACE_FILLED": 1,
+    },
 }
 
 
@@ -193,6 +196,7 @@ FUNCTIONS = {
     "dbrg_mesh_boundary_loop_count": (c_uint32, [mesh_p]),
     "dbrg_mesh_boundary_loop": (u32_p, [mesh_p, c_uint32, u32_p]),
     "dbrg_mesh_outliers": (u32_p, [mesh_p, u32_p]),
+    "dbrg_mesh_face_flags": (POINTER(ctypes.c_uint8), [mesh_p]),
     "dbrg_mesh_smoothed_points": (POINTER(c_double), [mesh_p]),
     "dbrg_mesh_stats": (c_enum, [mesh_p, POINTER(dbrg_stats)]),
     "dbrg_tetrahedralize": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_params), POINTER(tets_p)]),

@@ -217,5 +217,25 @@ class Library(unittest.TestCase):
         self.assertIn("triangles", repr(dbrg.reconstruct(SPHERE)))
 
 
+
+class FaceFlags(unittest.TestCase):
+    def test_the_faces_filling_made_are_flagged(self):
+        # A sphere without its points around one pole: growing leaves a hole there that filling closes.
+        points = fibonacci_sphere(1000)
+        points = points[points[:, 2] < 0.9]
+        filled = dbrg.reconstruct(points)
+        unfilled = dbrg.reconstruct(points, fill_holes=False)
+        self.assertGreater(filled.stats["holes_filled"], 0)
+        for mesh in (filled, unfilled):
+            self.assertEqual(mesh.face_flags.dtype, np.uint8)
+            self.assertEqual(mesh.face_flags.shape, (len(mesh.triangles),))
+            self.assertFalse(np.any(mesh.face_flags & ~np.uint8(dbrg.FACE_FILLED)))
+        self.assertFalse(np.any(unfilled.face_flags))
+        flagged = filled.triangles[(filled.face_flags & dbrg.FACE_FILLED) != 0]
+        self.assertGreater(len(flagged), 0)
+        # The flagged faces are over the hole: none is one growing made.
+        grown = canonical_triangles(unfilled.triangles)
+        self.assertFalse(canonical_triangles(flagged) & grown)
+
 if __name__ == "__main__":
     unittest.main()

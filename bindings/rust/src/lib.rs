@@ -41,6 +41,9 @@ pub use io::{read_points, vertex_normals, write_mesh, Attribute, AttributeValues
 /// seconds per stage, peak memory).
 pub type Stats = sys::dbrg_stats;
 
+/// Bit of [`Mesh::face_flags`]: the triangle was made by hole filling, not grown from the points.
+pub const FACE_FILLED: u8 = sys::DBRG_FACE_FILLED as u8;
+
 // ------------------------------------------------------------------------------------------------
 // Status and errors
 // ------------------------------------------------------------------------------------------------
@@ -621,6 +624,21 @@ impl Mesh {
                 &[]
             } else {
                 slice::from_raw_parts(data, count as usize)
+            }
+        }
+    }
+
+    /// One byte per triangle of [`Mesh::triangles`], in the same order: [`FACE_FILLED`] (bit 0) set on
+    /// the triangles hole filling made rather than growing from the points; all 0 without hole filling.
+    pub fn face_flags(&self) -> &[u8] {
+        unsafe {
+            let count = sys::dbrg_mesh_triangle_count(self.raw.as_ptr()) as usize;
+            let data = sys::dbrg_mesh_face_flags(self.raw.as_ptr());
+            if count == 0 || data.is_null() {
+                &[]
+            } else {
+                // SAFETY: count bytes owned by the mesh, alive as long as &self.
+                slice::from_raw_parts(data, count)
             }
         }
     }

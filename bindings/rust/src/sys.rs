@@ -48,6 +48,9 @@ pub const DBRG_CLEANING_AUTO: dbrg_cleaning = 0;
 pub const DBRG_CLEANING_OFF: dbrg_cleaning = 1;
 pub const DBRG_CLEANING_ON: dbrg_cleaning = 2;
 
+pub type dbrg_face_flag = c_uint;
+pub const DBRG_FACE_FILLED: dbrg_face_flag = 1;
+
 pub type dbrg_backend = c_uint;
 pub const DBRG_BACKEND_BUILTIN: dbrg_backend = 0;
 pub const DBRG_BACKEND_TETGEN: dbrg_backend = 1;
@@ -186,6 +189,7 @@ extern "C" {
     pub fn dbrg_mesh_boundary_loop_count(mesh: *const dbrg_mesh) -> u32;
     pub fn dbrg_mesh_boundary_loop(mesh: *const dbrg_mesh, loop_: u32, out_count: *mut u32) -> *const u32;
     pub fn dbrg_mesh_outliers(mesh: *const dbrg_mesh, out_count: *mut u32) -> *const u32;
+    pub fn dbrg_mesh_face_flags(mesh: *const dbrg_mesh) -> *const u8;
     pub fn dbrg_mesh_smoothed_points(mesh: *const dbrg_mesh) -> *const f64;
     pub fn dbrg_mesh_stats(mesh: *const dbrg_mesh, stats: *mut dbrg_stats) -> dbrg_status;
 

@@ -147,3 +147,29 @@ fn the_linked_library_is_the_version_this_crate_declares() {
     assert_eq!(dbrg::library_version_string(), dbrg::sys::DBRG_VERSION_STRING);
     assert_eq!(dbrg::sys::DBRG_VERSION_STRING, env!("CARGO_PKG_VERSION"));
 }
+
+#[test]
+fn the_faces_hole_filling_made_are_flagged() {
+    // A sphere without its points around one pole: growing leaves a hole there that filling closes.
+    let points: Vec<[f64; 3]> = fibonacci_sphere(1000).into_iter().filter(|p| p[2] < 0.9).collect();
+    let filled = dbrg::reconstruct(&points, &Params::default()).expect("reconstruct");
+    let mut no_filling = Params::default();
+    no_filling.fill_holes = false;
+    let unfilled = dbrg::reconstruct(&points, &no_filling).expect("reconstruct");
+    assert!(filled.stats().holes_filled > 0);
+    for mesh in [&filled, &unfilled] {
+        assert_eq!(mesh.face_flags().len(), mesh.triangles().len());
+        assert!(mesh.face_flags().iter().all(|&f| f & !dbrg::FACE_FILLED == 0));
+    }
+    assert!(unfilled.face_flags().iter().all(|&f| f == 0));
+    let flagged: Vec<[u32; 3]> = filled
+        .triangles()
+        .iter()
+        .zip(filled.face_flags())
+        .filter(|(_, &f)| f & dbrg::FACE_FILLED != 0)
+        .map(|(t, _)| *t)
+        .collect();
+    assert!(!flagged.is_empty());
+    // The flagged faces are over the hole: none is one growing made.
+    assert!(canonical(&flagged).is_disjoint(&canonical(unfilled.triangles())));
+}
