@@ -513,7 +513,7 @@ dbrg_status RegionGrower::remove_islands(const ProgressSpan& progress) {
 // Vertices still pinched when growing stops keep only their largest fan (Surface::remove_pinches).
 dbrg_status RegionGrower::resolve_pinches(Array<uint32_t>& removed) {
     const size_t first = removed.size();
-    if (!surface_.remove_pinches(removed)) return context_.fail_out_of_memory();
+    if (!surface_.remove_pinches(removed, fixed_)) return context_.fail_out_of_memory();
     for (size_t i = first; i < removed.size(); ++i) radius_sum_ -= face_radius(delaunay_, surface_, removed[i]);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size() - first);
     return DBRG_OK;

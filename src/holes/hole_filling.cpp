@@ -260,7 +260,7 @@ dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, FaceJournal& journa
         DBRG_PROPAGATE(remove_and_record(f, journal));
     }
     // Removing faces can pinch a vertex; the surface must stay a manifold in between.
-    if (!surface_.remove_pinches(pinched)) return context_.fail_out_of_memory();
+    if (!surface_.remove_pinches(pinched, fixed_)) return context_.fail_out_of_memory();
     bool grown = true;
     for (uint32_t f : pinched) {
         grown = grown && record_removed(f, journal);

@@ -107,7 +107,7 @@ dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, 
         spacing = grid.cell;
         return DBRG_OK;
     }
-    double* middle = distances.begin() + distances.size() / 2;
+    double* middle = distances.begin() + distances.size() * 9 / 10;
     std::nth_element(distances.begin(), middle, distances.end());
     spacing = *middle;
     return DBRG_OK;

@@ -140,57 +140,64 @@ dbrg_status stitch_strips(const Array<double>& xyz, int axis, const Array<double
                           Context& context, Array<uint32_t>& mesh) {
     const size_t count = xyz.size() / 3;
     const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
-    // The strip's points, numbered in the caller's order.
-    Array<uint32_t> local(context.memory), strip_index(context.memory);
-    Array<double> strip_xyz(context.memory);
-    if (!local.resize(count, NOT_IN_STRIP)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) {
-        if (wall_distance(xyz[3 * i + axis], walls) >= reach) continue;
-        local[i] = static_cast<uint32_t>(strip_index.size());
-        if (!strip_index.push_back(static_cast<uint32_t>(i))) return context.fail_out_of_memory();
-        for (int a = 0; a < 3; ++a) {
-            if (!strip_xyz.push_back(xyz[3 * i + a])) return context.fail_out_of_memory();
-        }
-    }
-    // Kept faces stay in `mesh`; those wholly among the strip's points are the seeds. The strip's corners
-    // of the kept faces that reach past it are fixed, unless a cut face had them too: their fans then have
-    // a gap in the strip that growing must be free to close.
-    Array<uint32_t> seeds(context.memory);
-    Array<uint8_t> fixed(context.memory), cut_corner(context.memory);
-    if (!fixed.resize(strip_index.size(), 0) || !cut_corner.resize(strip_index.size(), 0)) {
-        return context.fail_out_of_memory();
-    }
     const auto is_cut = [&](const uint32_t* t) {
         for (int i = 0; i < 3; ++i) {
             if (wall_distance(xyz[3 * size_t(t[i]) + axis], walls) < strip) return true;
         }
         return false;
     };
+    // The band: the points within reach of a wall, and the corners of the faces cut (a long face can
+    // reach further where the sampling is uneven). The seeds: the kept faces with a corner in the band. The
+    // strip's points: the band and the seeds' other corners, which are fixed (their fans are complete
+    // outside, far from the faces cut), numbered in the caller's order.
+    Array<uint8_t> in_band(context.memory);
+    if (!in_band.resize(count, 0)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) in_band[i] = wall_distance(xyz[3 * i + axis], walls) < reach;
     for (size_t f = 0; f < mesh.size() / 3; ++f) {
         const uint32_t* t = mesh.data() + 3 * f;
         if (!is_cut(t)) continue;
-        for (int i = 0; i < 3; ++i) cut_corner[local[t[i]]] = 1;  // a cut face is wholly in the strip's points
+        for (int i = 0; i < 3; ++i) in_band[t[i]] = 1;
     }
+    const auto is_seed = [&](const uint32_t* t) { return !is_cut(t) && (in_band[t[0]] || in_band[t[1]] || in_band[t[2]]); };
+    Array<uint32_t> local(context.memory);
+    if (!local.resize(count, NOT_IN_STRIP)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) local[i] = in_band[i] ? 0 : NOT_IN_STRIP;
+    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+        const uint32_t* t = mesh.data() + 3 * f;
+        if (!is_seed(t)) continue;
+        for (int i = 0; i < 3; ++i) local[t[i]] = 0;
+    }
+    Array<uint32_t> strip_index(context.memory);
+    Array<double> strip_xyz(context.memory);
+    Array<uint8_t> fixed(context.memory);
+    for (size_t i = 0; i < count; ++i) {
+        if (local[i] == NOT_IN_STRIP) continue;
+        local[i] = static_cast<uint32_t>(strip_index.size());
+        if (!strip_index.push_back(static_cast<uint32_t>(i)) || !fixed.push_back(in_band[i] ? 0 : 1)) {
+            return context.fail_out_of_memory();
+        }
+        for (int a = 0; a < 3; ++a) {
+            if (!strip_xyz.push_back(xyz[3 * i + a])) return context.fail_out_of_memory();
+        }
+    }
+    // Faces outside the strip stay in `mesh`; the seeds go to the stitch.
+    Array<uint32_t> seeds(context.memory);
     size_t kept = 0;
     for (size_t f = 0; f < mesh.size() / 3; ++f) {
         const uint32_t* t = mesh.data() + 3 * f;
         if (is_cut(t)) continue;
-        bool inside = true;
-        for (int i = 0; i < 3; ++i) inside = inside && local[t[i]] != NOT_IN_STRIP;
-        if (inside) {
+        if (is_seed(t)) {
             for (int i = 0; i < 3; ++i) {
                 if (!seeds.push_back(local[t[i]])) return context.fail_out_of_memory();
             }
             continue;
-        }
-        for (int i = 0; i < 3; ++i) {
-            if (local[t[i]] != NOT_IN_STRIP && !cut_corner[local[t[i]]]) fixed[local[t[i]]] = 1;
         }
         for (int i = 0; i < 3; ++i) mesh[3 * kept + i] = t[i];
         ++kept;
     }
     mesh.shrink(3 * kept);
     local.release();
+    in_band.release();
 
     Context stitch_context(piece_params(context.params));
     stitch_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
