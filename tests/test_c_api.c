@@ -404,7 +404,7 @@ static void test_tetrahedralization(void) {
 }
 
 static void test_tiles(void) {
-    const size_t n = 2000;
+    const size_t n = 8000; /* 3 slabs of a sphere this dense are wider than the strips around their walls */
     double* xyz = sphere_points(n);
     dbrg_points p = as_points(xyz, n, 3 * sizeof(double), DBRG_FLOAT64);
     uint64_t* ids = (uint64_t*)malloc(n * sizeof *ids);

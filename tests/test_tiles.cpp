@@ -72,10 +72,12 @@ TEST_CASE("stitched tiles of a torus, a double torus and a saddle match the sing
             REQUIRE(tiled.status == DBRG_OK);
             const measure::MeshReport report = test::report_of(xyz, tiled.triangles);
             const double agreement = face_agreement(tiled.triangles, single.triangles);
-            MESSAGE(name << ", " << tiles << " tiles: face agreement " << agreement << ", "
-                               << tiled.stats.seam_faces_dropped << " seam faces dropped");
+            MESSAGE(name << ", " << tiles << " tiles asked, " << tiled.stats.tiles << " run: face agreement "
+                         << agreement << ", " << tiled.stats.seam_faces_dropped << " seam faces dropped");
             test::require_valid_manifold(report);
-            CHECK(tiled.stats.tiles == tiles);
+            // Slabs thinner than 12 spacings are merged: 8 asked of the torus and the saddle give 6.
+            CHECK(tiled.stats.tiles > 1);
+            CHECK(tiled.stats.tiles <= tiles);
             CHECK(report.boundary_loops == single_report.boundary_loops);
             CHECK(report.genus == single_report.genus);
             // Measured at least 0.9992 on these samples: only the seam strips (12 spacings of 1 to 4 walls
@@ -230,8 +232,17 @@ TEST_CASE("growing from a given partial surface closes it and leaves fixed point
     }
 }
 
-TEST_CASE("the tile functions check their arguments and free everything") {
+TEST_CASE("a small cloud runs as one piece: slabs thinner than their strips are merged") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 500);
+    const test::Reconstruction single = test::reconstruct(xyz);
+    const test::Reconstruction tiled = reconstruct_tiled(xyz, 4);
+    REQUIRE(tiled.status == DBRG_OK);
+    CHECK(tiled.stats.tiles == 1);
+    CHECK(tiled.triangles == single.triangles);
+}
+
+TEST_CASE("the tile functions check their arguments and free everything") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 4000);
     const dbrg_points points = points_of(xyz);
     std::vector<uint64_t> ids(xyz.size() / 3);
     for (size_t i = 0; i < ids.size(); ++i) ids[i] = i;

@@ -371,14 +371,15 @@ DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats);
 
 /* Reconstructs `points` as `tile_count` tiles run one after another in this process and stitches them:
  * slabs along the longest axis of the points' box holding about equal numbers of points, each with a halo
- * of 8 point spacings (the median nearest-neighbour distance), seam strips of 3 spacings on each side of
- * a wall regrown from 3 more spacings of surface. The mesh depends on the tiling (tile_count and the
+ * of 8 point spacings (the 90th percentile of nearest-neighbour distances), seam strips of 3 spacings on
+ * each side of a wall regrown from the surface around them. The mesh depends on the tiling (tile_count and the
  * points), never on the order tiles run. Fills *out_mesh like dbrg_reconstruct, with the statistics
  * tiles, seam_faces_dropped and tile_peak_bytes; unique_points counts every input point (duplicates are
  * merged within tiles) and the times are summed over the tiles. tile_count 0 or 1 is dbrg_reconstruct.
  * Returns DBRG_OK or the status of the first problem, whose message names the tile.
  * points: the input, at most DBRG_MAX_POINTS points; read during the call only.
- * tile_count: the number of slabs wanted; fewer when many points share a coordinate along the axis.
+ * tile_count: the number of slabs wanted; fewer where a slab would be thinner than 12 spacings (the
+ *   strips around its walls) — a small cloud runs as one piece — and where points share a coordinate.
  * params: NULL for the defaults; its progress callback hears DBRG_STAGE_GROW as the share of tiles done.
  * out_mesh: as in dbrg_reconstruct. */
 DBRG_API dbrg_status dbrg_reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, const dbrg_params* params,

@@ -1,4 +1,5 @@
-// Point spacing: the median nearest-neighbour distance over a hash-chosen sample (see point_spacing.h).
+// Point spacing: a high percentile of nearest-neighbour distances over a hash-chosen sample (see
+// point_spacing.h).
 #include "tiles/point_spacing.h"
 
 #include <math.h>
@@ -107,9 +108,9 @@ dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, 
         spacing = grid.cell;
         return DBRG_OK;
     }
-    double* middle = distances.begin() + distances.size() * 9 / 10;
-    std::nth_element(distances.begin(), middle, distances.end());
-    spacing = *middle;
+    double* percentile = distances.begin() + distances.size() * 9 / 10;
+    std::nth_element(distances.begin(), percentile, distances.end());
+    spacing = *percentile;
     return DBRG_OK;
 }
 

@@ -36,18 +36,19 @@ int longest_axis(const double* xyz, size_t count) {
 }
 
 // The inner walls of `tile_count` slabs along `axis` holding about equal numbers of points: quantiles of the
-// coordinates, repeated values dropped (a wall splits no points that share its coordinate).
-dbrg_status slab_walls(const double* xyz, size_t count, int axis, uint32_t tile_count, Context& context,
-                       Array<double>& walls) {
+// coordinates. A wall closer than `min_width` to the previous one or to either end of the points is dropped
+// (a slab thinner than the strips around its walls has no interior of its own), and so is a repeated one.
+dbrg_status slab_walls(const double* xyz, size_t count, int axis, uint32_t tile_count, double min_width,
+                       Context& context, Array<double>& walls) {
     Array<double> values(context.memory);
     if (!values.resize(count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) values[i] = xyz[3 * i + axis];
     std::sort(values.begin(), values.end());
     for (uint32_t k = 1; k < tile_count; ++k) {
         const double wall = values[count * k / tile_count];
-        if (wall > values[0] && (walls.empty() || wall > walls[walls.size() - 1]) && !walls.push_back(wall)) {
-            return context.fail_out_of_memory();
-        }
+        const double previous = walls.empty() ? values[0] : walls[walls.size() - 1];
+        if (!(wall - previous >= min_width && values[count - 1] - wall >= min_width)) continue;
+        if (!walls.push_back(wall)) return context.fail_out_of_memory();
     }
     return DBRG_OK;
 }
@@ -289,7 +290,11 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     DBRG_PROPAGATE(estimate_spacing(xyz.data(), count, context, spacing));
     const int axis = longest_axis(xyz.data(), count);
     Array<double> walls(context.memory);
-    DBRG_PROPAGATE(slab_walls(xyz.data(), count, axis, tile_count, context, walls));
+    DBRG_PROPAGATE(slab_walls(xyz.data(), count, axis, tile_count, MIN_SLAB_SPACINGS * spacing, context, walls));
+    if (walls.empty() || !(spacing > 0)) {
+        xyz.release();
+        return reconstruct_surface(points, context, result);
+    }
     context.stats.tiles = static_cast<uint32_t>(walls.size() + 1);
     context.stats.input_points = static_cast<uint32_t>(count);
     context.stats.unique_points = static_cast<uint32_t>(count);
@@ -300,10 +305,8 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
         DBRG_PROPAGATE(run_tile(xyz, axis, walls, k, HALO_SPACINGS * spacing, context, mesh));
     }
     DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, 0.0));
-    if (!walls.empty()) {
-        DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
-        DBRG_PROPAGATE(stitch_strips(xyz, axis, walls, spacing, context, mesh));
-    }
+    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
+    DBRG_PROPAGATE(stitch_strips(xyz, axis, walls, spacing, context, mesh));
     DBRG_PROPAGATE(assemble(xyz, mesh, context, result));
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }

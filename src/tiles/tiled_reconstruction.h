@@ -24,7 +24,9 @@ struct TileCore {
 // The halo and the seam strips, in point spacings (docs/tiles.md argues for the figures).
 constexpr double HALO_SPACINGS = 8.0;
 constexpr double STRIP_SPACINGS = 3.0;   // half-width of the band cut and regrown around a wall
-constexpr double MARGIN_SPACINGS = 3.0;  // the seed surface's band beyond it
+constexpr double MARGIN_SPACINGS = 3.0;  // the band beyond it whose faces seed the regrowing
+// The thinnest slab: one with no interior between the strips of its walls holds nothing of its own.
+constexpr double MIN_SLAB_SPACINGS = 2 * (STRIP_SPACINGS + MARGIN_SPACINGS);
 
 // Reconstructs the surface of `points` (a tile's core and halo) and keeps the triangles the core owns
 // (TileCore::owns). Writes them to `owned`, 3 indices into `points` each. Fills context.stats as
@@ -33,7 +35,8 @@ dbrg_status reconstruct_tile(const dbrg_points* points, const TileCore& core, Co
                              Array<uint32_t>& owned);
 
 // Reconstructs `points` as `tile_count` slabs along the longest axis of their box, cut at point-count
-// quantiles, then stitches them (docs/tiles.md). One tile is reconstruct_surface itself. The result is in
+// quantiles, then stitches them (docs/tiles.md); fewer slabs where they would be thinner than
+// MIN_SLAB_SPACINGS. One tile is reconstruct_surface itself. The result is in
 // the caller's indexing; context.stats is filled for the whole mesh (the tiles' own figures summed where
 // they are counts and times), tiles, seam_faces_dropped and tile_peak_bytes included.
 dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Context& context, SurfaceResult& result);
