@@ -220,8 +220,8 @@ dbrg_status stitch_strips(const Array<double>& xyz, int axis, const Array<double
     return DBRG_OK;
 }
 
-// Builds S from the stitched faces, in canonical order, skipping those that would break the manifold, and
-// hands it over as the single call does.
+// Builds S from the stitched faces in the orientation walk's order, skipping those that would break the
+// manifold, and hands it over as the single call does.
 dbrg_status assemble(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result) {
     DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
     const uint32_t count = static_cast<uint32_t>(xyz.size() / 3);

@@ -132,11 +132,12 @@ dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, Cont
             for (size_t k = first; k < order.size(); ++k) flip[order[k]] ^= 1;
         }
     }
-    for (uint32_t f = 0; f < count; ++f) {
+    for (uint32_t k = 0; k < count; ++k) {
+        const uint32_t f = order[k];
         const Triangle& t = faces[f];
-        triangles[3 * size_t(f)] = t.v[0];
-        triangles[3 * size_t(f) + 1] = t.v[flip[f] ? 2 : 1];
-        triangles[3 * size_t(f) + 2] = t.v[flip[f] ? 1 : 2];
+        triangles[3 * size_t(k)] = t.v[0];
+        triangles[3 * size_t(k) + 1] = t.v[flip[f] ? 2 : 1];
+        triangles[3 * size_t(k) + 2] = t.v[flip[f] ? 1 : 2];
     }
     return DBRG_OK;
 }
