@@ -306,7 +306,14 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     }
     DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, 0.0));
     DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
-    DBRG_PROPAGATE(stitch_strips(xyz, axis, walls, spacing, context, mesh));
+    // One wall at a time, so that the stitch holds one strip: slabs are at least as wide as two bands, so
+    // a strip meets only the faces its neighbours' stitches regrew at its edge, as kept surface.
+    for (size_t w = 0; w < walls.size(); ++w) {
+        DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, double(w) / walls.size()));
+        Array<double> wall(context.memory);
+        if (!wall.push_back(walls[w])) return context.fail_out_of_memory();
+        DBRG_PROPAGATE(stitch_strips(xyz, axis, wall, spacing, context, mesh));
+    }
     DBRG_PROPAGATE(assemble(xyz, mesh, context, result));
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }
