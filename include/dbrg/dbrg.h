@@ -349,7 +349,7 @@ typedef struct dbrg_stats {
     /* Fields from version 0.4.0 on; 0 except after dbrg_reconstruct_tiled. */
     uint32_t tiles;                  /* tiles reconstructed (1 when the call ran as one piece) */
     uint32_t seam_faces_dropped;     /* stitched faces left out because they would break the manifold */
-    size_t tile_peak_bytes;          /* the most one tile, or the seam stitch, held through the allocator */
+    size_t tile_peak_bytes;          /* the most one tile, or one seam stitch, held through the allocator */
 } dbrg_stats;
 
 /* Copies the statistics of the call that made `mesh` into `stats`, up to stats->struct_size bytes,

@@ -53,15 +53,6 @@ dbrg_status slab_walls(const double* xyz, size_t count, int axis, uint32_t tile_
     return DBRG_OK;
 }
 
-// Distance along the slab axis from coordinate x to the nearest wall.
-double wall_distance(double x, const Array<double>& walls) {
-    const double* at = std::lower_bound(walls.begin(), walls.end(), x);
-    double d = HUGE_VAL;
-    if (at != walls.end()) d = *at - x;
-    if (at != walls.begin()) d = std::min(d, x - at[-1]);
-    return d;
-}
-
 dbrg_points double_points(const Array<double>& xyz) {
     return dbrg_points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
 }
@@ -135,34 +126,39 @@ dbrg_status run_tile(const Array<double>& xyz, int axis, const Array<double>& wa
     return DBRG_OK;
 }
 
-// Cuts the seam strips out of `mesh` and regrows them from the surface around them (docs/tiles.md, steps 2
-// and 3); `mesh` is left with the faces outside the strips and the regrown ones.
-dbrg_status stitch_strips(const Array<double>& xyz, int axis, const Array<double>& walls, double spacing,
-                          Context& context, Array<uint32_t>& mesh) {
+// Where a point lies from the wall being stitched.
+enum Zone : uint8_t { FAR = 0, BAND = 1, STRIP = 2 };
+
+// Cuts the seam strip around `wall` out of `mesh` and regrows it from the surface around it (docs/tiles.md,
+// steps 2 and 3); `mesh` is left with the faces outside the strip and the regrown ones.
+dbrg_status stitch_strip(const Array<double>& xyz, int axis, double wall, double spacing, Context& context,
+                         Array<uint32_t>& mesh) {
     const size_t count = xyz.size() / 3;
     const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
-    const auto is_cut = [&](const uint32_t* t) {
-        for (int i = 0; i < 3; ++i) {
-            if (wall_distance(xyz[3 * size_t(t[i]) + axis], walls) < strip) return true;
-        }
-        return false;
-    };
-    // The band: the points within reach of a wall, and the corners of the faces cut (a long face can
+    // The band: the points within reach of the wall, and the corners of the faces cut (a long face can
     // reach further where the sampling is uneven). The seeds: the kept faces with a corner in the band. The
     // strip's points: the band and the seeds' other corners, which are fixed (their fans are complete
     // outside, far from the faces cut), numbered in the caller's order.
-    Array<uint8_t> in_band(context.memory);
-    if (!in_band.resize(count, 0)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) in_band[i] = wall_distance(xyz[3 * i + axis], walls) < reach;
+    Array<uint8_t> zone(context.memory);
+    if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) {
+        const double d = fabs(xyz[3 * i + axis] - wall);
+        zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
+    }
+    const auto is_cut = [&](const uint32_t* t) {
+        return zone[t[0]] == STRIP || zone[t[1]] == STRIP || zone[t[2]] == STRIP;
+    };
     for (size_t f = 0; f < mesh.size() / 3; ++f) {
         const uint32_t* t = mesh.data() + 3 * f;
         if (!is_cut(t)) continue;
-        for (int i = 0; i < 3; ++i) in_band[t[i]] = 1;
+        for (int i = 0; i < 3; ++i) zone[t[i]] = zone[t[i]] == STRIP ? STRIP : BAND;
     }
-    const auto is_seed = [&](const uint32_t* t) { return !is_cut(t) && (in_band[t[0]] || in_band[t[1]] || in_band[t[2]]); };
+    const auto is_seed = [&](const uint32_t* t) {
+        return !is_cut(t) && (zone[t[0]] != FAR || zone[t[1]] != FAR || zone[t[2]] != FAR);
+    };
     Array<uint32_t> local(context.memory);
     if (!local.resize(count, NOT_IN_STRIP)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) local[i] = in_band[i] ? 0 : NOT_IN_STRIP;
+    for (size_t i = 0; i < count; ++i) local[i] = zone[i] != FAR ? 0 : NOT_IN_STRIP;
     for (size_t f = 0; f < mesh.size() / 3; ++f) {
         const uint32_t* t = mesh.data() + 3 * f;
         if (!is_seed(t)) continue;
@@ -174,7 +170,7 @@ dbrg_status stitch_strips(const Array<double>& xyz, int axis, const Array<double
     for (size_t i = 0; i < count; ++i) {
         if (local[i] == NOT_IN_STRIP) continue;
         local[i] = static_cast<uint32_t>(strip_index.size());
-        if (!strip_index.push_back(static_cast<uint32_t>(i)) || !fixed.push_back(in_band[i] ? 0 : 1)) {
+        if (!strip_index.push_back(static_cast<uint32_t>(i)) || !fixed.push_back(zone[i] == FAR ? 1 : 0)) {
             return context.fail_out_of_memory();
         }
         for (int a = 0; a < 3; ++a) {
@@ -198,7 +194,7 @@ dbrg_status stitch_strips(const Array<double>& xyz, int axis, const Array<double
     }
     mesh.shrink(3 * kept);
     local.release();
-    in_band.release();
+    zone.release();
 
     Context stitch_context(piece_params(context.params));
     stitch_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
@@ -310,9 +306,7 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     // a strip meets only the faces its neighbours' stitches regrew at its edge, as kept surface.
     for (size_t w = 0; w < walls.size(); ++w) {
         DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, double(w) / walls.size()));
-        Array<double> wall(context.memory);
-        if (!wall.push_back(walls[w])) return context.fail_out_of_memory();
-        DBRG_PROPAGATE(stitch_strips(xyz, axis, wall, spacing, context, mesh));
+        DBRG_PROPAGATE(stitch_strip(xyz, axis, walls[w], spacing, context, mesh));
     }
     DBRG_PROPAGATE(assemble(xyz, mesh, context, result));
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
