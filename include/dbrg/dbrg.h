@@ -406,9 +406,10 @@ DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint
 /* Grows a surface from a given partial one: puts the seed triangles into the surface (those that do not
  * fit it as an oriented manifold are left out), then region growing runs from their boundary edges over
  * the Delaunay tetrahedralization of `points` with the usual candidate order, examinations and
- * open-surface test, followed by its pass over the edges left unresolved and the edge flips. No new
- * triangle uses a fixed point. The seam stitch of tiled reconstruction, and a way to impose seeds or a
- * border. The result holds the whole surface, the seeds that fitted included. Points all in one plane
+ * open-surface test, followed by hole filling's Delaunay pass over the edges left unresolved, its ears
+ * over the holes that pass through no fixed point, and the edge flips (no handle cut). No new triangle
+ * uses a fixed point, and a fixed point where the seeds meet in two fans keeps both. The seam stitch of
+ * tiled reconstruction, and a way to impose seeds or a border. The result holds the whole surface, the seeds that fitted included. Points all in one plane
  * give DBRG_ERR_DEGENERATE_INPUT.
  * points, point_ids: as in dbrg_reconstruct_tile.
  * seed_triangles: 3 * seed_count global ids of `points`, each triangle counter-clockwise and all oriented
