@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <algorithm>
 #include <new>
 
 #include "core/c_enum.h"
@@ -9,6 +10,7 @@
 #include "points/point_input.h"
 #include "points/point_conditioning.h"
 #include "pipeline.h"
+#include "tiles/tiled_reconstruction.h"
 
 using namespace dbrg;
 
@@ -111,10 +113,113 @@ struct dbrg_mesh : ResultBase {
     dbrg_stats stats;
 };
 
+struct dbrg_tile_mesh : ResultBase {
+    explicit dbrg_tile_mesh(const dbrg_allocator* allocator) : ResultBase(allocator), triangles(memory) {
+        memset(&stats, 0, sizeof stats);
+        stats.struct_size = sizeof stats;
+    }
+    Array<uint64_t> triangles;  // global ids
+    dbrg_stats stats;
+};
+
 struct dbrg_tetrahedralization : ResultBase {
     explicit dbrg_tetrahedralization(const dbrg_allocator* allocator) : ResultBase(allocator), result(memory) {}
     TetrahedraResult result;
 };
+
+namespace {
+
+// Copies `from` into the caller's stats, up to its struct_size.
+dbrg_status copy_stats(const dbrg_stats& from, dbrg_stats& to) {
+    const size_t size = to.struct_size < sizeof from ? to.struct_size : sizeof from;
+    memcpy(&to, &from, size);
+    to.struct_size = size;
+    return DBRG_OK;
+}
+
+// The caller's global ids `wanted` as indices into its `count` points with ids `ids` (count, one past the
+// last index, for an id not among them).
+dbrg_status local_indices(const uint64_t* ids, size_t count, const uint64_t* wanted, size_t wanted_count,
+                          Context& context, Array<uint32_t>& local) {
+    struct IdIndex {
+        uint64_t id;
+        uint32_t index;
+    };
+    Array<IdIndex> by_id(context.memory);
+    if (!by_id.resize(count) || !local.resize(wanted_count)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) by_id[i] = IdIndex{ids[i], static_cast<uint32_t>(i)};
+    std::sort(by_id.begin(), by_id.end(), [](const IdIndex& a, const IdIndex& b) { return a.id < b.id; });
+    for (size_t i = 0; i < wanted_count; ++i) {
+        const IdIndex* at = std::lower_bound(by_id.begin(), by_id.end(), wanted[i],
+                                             [](const IdIndex& e, uint64_t id) { return e.id < id; });
+        local[i] = at != by_id.end() && at->id == wanted[i] ? at->index : static_cast<uint32_t>(count);
+    }
+    return DBRG_OK;
+}
+
+// A call that hands back a dbrg_tile_mesh: `work(context, triangles)` writes triangles as indices into
+// `points`, handed back as their global ids.
+template <class Work>
+dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const dbrg_params* given,
+                          dbrg_tile_mesh** out, const Work& work) {
+    if (!out) return DBRG_ERR_INVALID_ARGUMENT;
+    dbrg_params params;
+    dbrg_tile_mesh* mesh = *out = open_result<dbrg_tile_mesh>(given, params);
+    if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
+    if (mesh->status != DBRG_OK) return mesh->status;
+    MemoryMeter meter;
+    Context context(params);
+    context.memory.count_in(&meter);
+    mesh->memory.count_in(&meter);
+    const double start = seconds_now();
+    dbrg_status status = DBRG_OK;
+    if (!points || !ids) {
+        status = context.fail(DBRG_ERR_INVALID_ARGUMENT, !points ? "points is NULL" : "point_ids is NULL");
+    } else {
+        status = check_point_count(points->count, context);
+    }
+    Array<uint32_t> triangles(context.memory);
+    if (status == DBRG_OK) status = work(context, triangles);
+    if (status == DBRG_OK && !mesh->triangles.reserve(triangles.size())) status = context.fail_out_of_memory();
+    if (status == DBRG_OK) {
+        for (uint32_t v : triangles) mesh->triangles.push_back(ids[v]);
+    }
+    triangles.release();
+    mesh->memory.count_in(nullptr);
+    mesh->stats = context.stats;
+    mesh->stats.seconds_total = seconds_now() - start;
+    mesh->stats.peak_bytes = meter.peak;
+    mesh->record(status, status == DBRG_OK ? "" : context.message());
+    return status;
+}
+
+// A call that hands back a dbrg_mesh: `work(context, surface)` fills the surface and context.stats.
+template <class Work>
+dbrg_status run_mesh_call(const dbrg_points* points, const dbrg_params* given, dbrg_mesh** out_mesh, const Work& work) {
+    if (!out_mesh) return DBRG_ERR_INVALID_ARGUMENT;
+    dbrg_params params;
+    dbrg_mesh* mesh = *out_mesh = open_result<dbrg_mesh>(given, params);
+    if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
+    if (mesh->status != DBRG_OK) return mesh->status;
+    MemoryMeter meter;  // the working memory and the result's together: the pipeline frees the one before the other grows
+    Context context(params);
+    context.memory.count_in(&meter);
+    mesh->memory.count_in(&meter);
+    const double start = seconds_now();
+    const dbrg_status status = work(context, mesh->surface);
+    if (status != DBRG_OK) mesh->surface = SurfaceResult(mesh->memory);
+    mesh->memory.count_in(nullptr);
+    mesh->point_count = status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
+    mesh->stats = context.stats;
+    mesh->stats.seconds_total = seconds_now() - start;
+    mesh->stats.peak_bytes = meter.peak;
+    char warning[sizeof mesh->message];
+    if (status == DBRG_OK) left_out_warning(mesh->stats, params, warning, sizeof warning);
+    mesh->record(status, status == DBRG_OK ? warning : context.message());
+    return status;
+}
+
+} // namespace
 
 extern "C" {
 
@@ -190,27 +295,9 @@ DBRG_API dbrg_status dbrg_points_validate(const dbrg_points* points, const dbrg_
 }
 
 DBRG_API dbrg_status dbrg_reconstruct(const dbrg_points* points, const dbrg_params* given, dbrg_mesh** out_mesh) {
-    if (!out_mesh) return DBRG_ERR_INVALID_ARGUMENT;
-    dbrg_params params;
-    dbrg_mesh* mesh = *out_mesh = open_result<dbrg_mesh>(given, params);
-    if (!mesh) return DBRG_ERR_OUT_OF_MEMORY;
-    if (mesh->status != DBRG_OK) return mesh->status;
-    MemoryMeter meter;  // the working memory and the result's together: the pipeline frees the one before the other grows
-    Context context(params);
-    context.memory.count_in(&meter);
-    mesh->memory.count_in(&meter);
-    const double start = seconds_now();
-    const dbrg_status status = reconstruct_surface(points, context, mesh->surface);
-    if (status != DBRG_OK) mesh->surface = SurfaceResult(mesh->memory);
-    mesh->memory.count_in(nullptr);
-    mesh->point_count = status == DBRG_OK ? static_cast<uint32_t>(points->count) : 0;
-    mesh->stats = context.stats;
-    mesh->stats.seconds_total = seconds_now() - start;
-    mesh->stats.peak_bytes = meter.peak;
-    char warning[sizeof mesh->message];
-    if (status == DBRG_OK) left_out_warning(mesh->stats, params, warning, sizeof warning);
-    mesh->record(status, status == DBRG_OK ? warning : context.message());
-    return status;
+    return run_mesh_call(points, given, out_mesh, [&](Context& context, SurfaceResult& surface) {
+        return reconstruct_surface(points, context, surface);
+    });
 }
 
 DBRG_API void dbrg_mesh_destroy(dbrg_mesh* mesh) { destroy_result(mesh); }
@@ -257,10 +344,66 @@ DBRG_API const double* dbrg_mesh_smoothed_points(const dbrg_mesh* mesh) {
 
 DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats) {
     if (!mesh || !stats || stats->struct_size < sizeof(size_t)) return DBRG_ERR_INVALID_ARGUMENT;
-    const size_t size = stats->struct_size < sizeof mesh->stats ? stats->struct_size : sizeof mesh->stats;
-    memcpy(stats, &mesh->stats, size);
-    stats->struct_size = size;
-    return DBRG_OK;
+    return copy_stats(mesh->stats, *stats);
+}
+
+DBRG_API dbrg_status dbrg_reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, const dbrg_params* given,
+                                            dbrg_mesh** out_mesh) {
+    return run_mesh_call(points, given, out_mesh, [&](Context& context, SurfaceResult& surface) {
+        return reconstruct_tiled(points, tile_count, context, surface);
+    });
+}
+
+DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint64_t* point_ids, const double* core_low,
+                                           const double* core_high, const dbrg_params* given, dbrg_tile_mesh** out) {
+    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles) {
+        if (!core_low || !core_high) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "core_low or core_high is NULL");
+        TileCore core;
+        for (int axis = 0; axis < 3; ++axis) {
+            core.low[axis] = core_low[axis];
+            core.high[axis] = core_high[axis];
+        }
+        return reconstruct_tile(points, core, context, triangles);
+    });
+}
+
+DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uint64_t* point_ids,
+                                            const uint64_t* seed_triangles, size_t seed_count, const uint8_t* fixed,
+                                            const dbrg_params* given, dbrg_tile_mesh** out) {
+    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles) {
+        if (seed_count > 0 && !seed_triangles) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "seed_triangles is NULL with a seed_count of %zu",
+                                seed_count);
+        }
+        if (seed_count > SIZE_MAX / 3) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "seed_count is too large");
+        Array<uint32_t> seeds(context.memory);
+        DBRG_PROPAGATE(local_indices(point_ids, points->count, seed_triangles, 3 * seed_count, context, seeds));
+        SurfaceResult surface(context.memory);
+        DBRG_PROPAGATE(grow_from_surface(points, seeds.data(), seed_count, fixed, context, surface));
+        triangles.swap(surface.triangles);
+        return DBRG_OK;
+    });
+}
+
+DBRG_API void dbrg_tile_mesh_destroy(dbrg_tile_mesh* mesh) { destroy_result(mesh); }
+
+DBRG_API dbrg_status dbrg_tile_mesh_status(const dbrg_tile_mesh* mesh) {
+    return mesh ? mesh->status : DBRG_ERR_INVALID_ARGUMENT;
+}
+
+DBRG_API const char* dbrg_tile_mesh_message(const dbrg_tile_mesh* mesh) { return mesh ? mesh->message : ""; }
+
+DBRG_API uint64_t dbrg_tile_mesh_triangle_count(const dbrg_tile_mesh* mesh) {
+    return mesh ? mesh->triangles.size() / 3 : 0;
+}
+
+DBRG_API const uint64_t* dbrg_tile_mesh_triangles(const dbrg_tile_mesh* mesh) {
+    return mesh && !mesh->triangles.empty() ? mesh->triangles.data() : nullptr;
+}
+
+DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats* stats) {
+    if (!mesh || !stats || stats->struct_size < sizeof(size_t)) return DBRG_ERR_INVALID_ARGUMENT;
+    return copy_stats(mesh->stats, *stats);
 }
 
 DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_params* given,

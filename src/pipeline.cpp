@@ -90,6 +90,34 @@ dbrg_status grow_flat_surface(const ConditionedPoints& conditioned, Context& con
     return snapshots.finish(surface);
 }
 
+// A caller index with no conditioned vertex of its own.
+const uint32_t NO_VERTEX = UINT32_MAX;
+
+// The seeds and fixed flags, given by caller index, by conditioned vertex: a face with a merged duplicate
+// that does not stand for its copies is dropped (it has no vertex of its own).
+dbrg_status to_vertex_indexing(const ConditionedPoints& conditioned, size_t count, const uint32_t* seeds,
+                               size_t seed_count, const uint8_t* fixed, Context& context,
+                               Array<uint32_t>& seed_vertices, Array<uint8_t>& fixed_flags) {
+    Array<uint32_t> vertex_of(context.memory);
+    if (!vertex_of.resize(count, NO_VERTEX)) return context.fail_out_of_memory();
+    for (uint32_t v = 0; v < conditioned.size(); ++v) vertex_of[conditioned.input_index[v]] = v;
+    if (!seed_vertices.reserve(3 * seed_count)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < seed_count; ++i) {
+        uint32_t corners[3];
+        bool known = true;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t index = seeds[3 * i + k];
+            corners[k] = index < count ? vertex_of[index] : NO_VERTEX;
+            known = known && corners[k] != NO_VERTEX;
+        }
+        for (uint32_t k = 0; known && k < 3; ++k) seed_vertices.push_back(corners[k]);
+    }
+    if (!fixed) return DBRG_OK;
+    if (!fixed_flags.resize(conditioned.size(), 0)) return context.fail_out_of_memory();
+    for (uint32_t v = 0; v < conditioned.size(); ++v) fixed_flags[v] = fixed[conditioned.input_index[v]] ? 1 : 0;
+    return DBRG_OK;
+}
+
 } // namespace
 
 dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context) {
@@ -145,6 +173,42 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
     const double start = seconds_now();
     DBRG_PROPAGATE(emit_surface(surface, conditioned, context, result));
     context.stats.seconds_output = seconds_now() - start;
+    return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
+}
+
+dbrg_status grow_from_surface(const dbrg_points* points, const uint32_t* seeds, size_t seed_count,
+                              const uint8_t* fixed, Context& context, SurfaceResult& result) {
+    ConditionedPoints conditioned(context.memory);
+    DBRG_PROPAGATE(prepare_points(points, context, conditioned));
+    DBRG_PROPAGATE(refuse_flat(conditioned, points->count, context));
+    Array<uint32_t> seed_vertices(context.memory);
+    Array<uint8_t> fixed_flags(context.memory);
+    DBRG_PROPAGATE(to_vertex_indexing(conditioned, points->count, seeds, seed_count, fixed, context,
+                                      seed_vertices, fixed_flags));
+    Surface surface(context.memory);
+    {
+        Tetrahedralization delaunay(context.memory);
+        DBRG_PROPAGATE(tetrahedralize(conditioned, context, delaunay));
+        double start = seconds_now();
+        RegionGrower grower(delaunay, surface, context);
+        DBRG_PROPAGATE(grower.grow_from(seed_vertices.data(), seed_vertices.size() / 3,
+                                        fixed_flags.empty() ? nullptr : fixed_flags.data()));
+        context.stats.seconds_grow = seconds_now() - start;
+        start = seconds_now();
+        const ProgressSpan stage(context, DBRG_STAGE_FILL_HOLES);
+        HoleFiller filler(delaunay, surface, grower.boundary_causes(), context);
+        filler.keep_fixed(fixed_flags.empty() ? nullptr : fixed_flags.data());
+        bool holes = false;
+        DBRG_PROPAGATE(filler.find_holes(holes));
+        if (holes) {
+            DBRG_PROPAGATE(grower.regrow_holes(stage.part(0, FILL_PROGRESS_EARS)));
+            DBRG_PROPAGATE(filler.fill_with_ears(stage.part(FILL_PROGRESS_EARS, FILL_PROGRESS_ISLANDS),
+                                                 stage.part(FILL_PROGRESS_ISLANDS, FILL_PROGRESS_FLIPS)));
+        }
+        DBRG_PROPAGATE(grower.flip_deferred(stage.part(FILL_PROGRESS_FLIPS, 1)));
+        context.stats.seconds_fill_holes = seconds_now() - start;
+    }
+    DBRG_PROPAGATE(emit_surface(surface, conditioned, context, result));
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }
 

@@ -23,6 +23,14 @@ struct TetrahedraResult {
 // from the context's. Fills context.stats.
 dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, SurfaceResult& result);
 
+// Grows the surface from a given partial one (RegionGrower::grow_from) on the Delaunay tetrahedralization
+// of the points, then fills holes as fill_holes does but for the handle cut (a strip is open), with the
+// loops through a fixed vertex left alone (HoleFiller::keep_fixed), and flips the deferred edges. `seeds` holds 3 caller indices per face; `fixed` (NULL: none) a flag per caller point
+// that no new face may use. The result holds the whole surface, the seeds that fitted included. Points all
+// in one plane are refused (DBRG_ERR_DEGENERATE_INPUT). Fills context.stats.
+dbrg_status grow_from_surface(const dbrg_points* points, const uint32_t* seeds, size_t seed_count,
+                              const uint8_t* fixed, Context& context, SurfaceResult& result);
+
 // Tetrahedralizes the points with context.params.backend.
 dbrg_status tetrahedralize_points(const dbrg_points* points, Context& context, TetrahedraResult& result);
 

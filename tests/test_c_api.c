@@ -1,5 +1,5 @@
 /* The whole public API exercised from C99: versions, statuses, parameters, input checks, reconstruction,
- * the tetrahedralization, the caller's allocator (counted, and failing on purpose) and cancellation. */
+ * the tetrahedralization, tiles, the caller's allocator (counted, and failing on purpose) and cancellation. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -406,6 +406,53 @@ static void test_tetrahedralization(void) {
     dbrg_tetrahedralization_destroy(tets);
 }
 
+static void test_tiles(void) {
+    const size_t n = 8000; /* 3 slabs of a sphere this dense are wider than the strips around their walls */
+    double* xyz = sphere_points(n);
+    dbrg_points p = as_points(xyz, n, 3 * sizeof(double), DBRG_FLOAT64);
+    uint64_t* ids = (uint64_t*)malloc(n * sizeof *ids);
+    const double low[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, high[3] = {0.0, HUGE_VAL, HUGE_VAL};
+    dbrg_tile_mesh* tile = NULL;
+    dbrg_mesh* mesh = NULL;
+    dbrg_stats stats;
+    const uint64_t* triangles;
+    uint64_t count, i;
+    size_t k;
+    int ids_known = 1;
+
+    for (k = 0; k < n; ++k) ids[k] = ((uint64_t)1 << 35) + k;
+    CHECK(dbrg_reconstruct_tile(&p, ids, low, high, NULL, &tile) == DBRG_OK);
+    count = dbrg_tile_mesh_triangle_count(tile);
+    triangles = dbrg_tile_mesh_triangles(tile);
+    CHECK(count > 0 && triangles != NULL);
+    for (i = 0; i < 3 * count; ++i) ids_known = ids_known && triangles[i] - ids[0] < n;
+    CHECK(ids_known);
+    CHECK(dbrg_tile_mesh_status(tile) == DBRG_OK);
+    CHECK(strcmp(dbrg_tile_mesh_message(tile), "") == 0);
+    stats.struct_size = sizeof stats;
+    CHECK(dbrg_tile_mesh_stats(tile, &stats) == DBRG_OK && stats.triangles > count);
+    /* The owned half of the sphere, grown back to the whole. */
+    {
+        dbrg_tile_mesh* grown = NULL;
+        CHECK(dbrg_grow_from_surface(&p, ids, triangles, (size_t)count, NULL, NULL, &grown) == DBRG_OK);
+        CHECK(dbrg_tile_mesh_triangle_count(grown) > count);
+        dbrg_tile_mesh_destroy(grown);
+    }
+    dbrg_tile_mesh_destroy(tile);
+    dbrg_tile_mesh_destroy(NULL);
+    CHECK(dbrg_reconstruct_tile(&p, NULL, low, high, NULL, &tile) == DBRG_ERR_INVALID_ARGUMENT);
+    dbrg_tile_mesh_destroy(tile);
+
+    CHECK(dbrg_reconstruct_tiled(&p, 3, NULL, &mesh) == DBRG_OK);
+    CHECK(is_oriented_manifold(dbrg_mesh_triangles(mesh), dbrg_mesh_triangle_count(mesh), (uint32_t)n));
+    CHECK(dbrg_mesh_boundary_loop_count(mesh) == 0);
+    stats.struct_size = sizeof stats;
+    CHECK(dbrg_mesh_stats(mesh, &stats) == DBRG_OK && stats.tiles == 3);
+    dbrg_mesh_destroy(mesh);
+    free(ids);
+    free(xyz);
+}
+
 int main(void) {
     test_versions_and_statuses();
     test_params();
@@ -413,6 +460,7 @@ int main(void) {
     test_reconstruction();
     test_allocator();
     test_tetrahedralization();
+    test_tiles();
     printf("%d passed, %d failed\n", checks_passed, checks_failed);
     return checks_failed == 0 ? 0 : 1;
 }

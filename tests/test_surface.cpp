@@ -246,3 +246,24 @@ TEST_CASE("allocation failure is reported, not hidden") {
     CHECK_FALSE(surface.reset(4));
     CHECK(memory.failed());
 }
+
+TEST_CASE("removing pinches spares the vertices marked, and treats the others") {
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(11));
+    // Vertex 0 pinched by two single faces; vertex 5 by a fan of two faces and a single one.
+    surface.add_face(0, 1, 2, 0);
+    surface.add_face(0, 3, 4, 0);
+    surface.add_face(5, 6, 7, 0);
+    surface.add_face(5, 7, 8, 0);
+    surface.add_face(5, 9, 10, 0);
+    REQUIRE(surface.pinched_vertex_count() == 2);
+    const uint8_t spared[11] = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    Array<uint32_t> removed(memory);
+    REQUIRE(surface.remove_pinches(removed, spared));
+    require_valid(surface);
+    CHECK(surface.is_pinched(0));
+    CHECK_FALSE(surface.is_pinched(5));
+    REQUIRE(removed.size() == 1);
+    CHECK(removed[0] == 4);  // the smaller fan of vertex 5
+}

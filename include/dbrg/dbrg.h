@@ -389,6 +389,10 @@ typedef struct dbrg_stats {
     double noise_level;              /* the noise estimate: median residual of a local quadric fit over the
                                         mean distance to the neighbours (about 0.8 x noise / spacing) */
     double seconds_clean;
+    /* Also from version 0.4.0 on; 0 except after dbrg_reconstruct_tiled. */
+    uint32_t tiles;                  /* tiles reconstructed (1 when the call ran as one piece) */
+    uint32_t seam_faces_dropped;     /* stitched faces left out because they would break the manifold */
+    size_t tile_peak_bytes;          /* the most one tile, or one seam stitch, held through the allocator */
 } dbrg_stats;
 
 /* Returns the indices of the input points left out as outliers, ascending, and writes their number to
@@ -409,6 +413,89 @@ DBRG_API const double* dbrg_mesh_smoothed_points(const dbrg_mesh* mesh);
  * Returns DBRG_ERR_INVALID_ARGUMENT when mesh or stats is NULL or struct_size is too small to hold
  * the struct_size field. */
 DBRG_API dbrg_status dbrg_mesh_stats(const dbrg_mesh* mesh, dbrg_stats* stats);
+
+/* ------------------------------------------------------------------------------------------------
+ * Tiles: clouds larger than one process — EXPERIMENTAL (docs/tiles.md)
+ *
+ * A cloud is cut into tiles, each a half-open core box plus a halo of points around it; each tile is
+ * reconstructed on its own (here, or in another process) and keeps the triangles its core owns; the seam
+ * strips around the core walls are then cut and regrown from the surface around them. Point ids in these
+ * functions are 64-bit global ids, so a cloud may have more than 4.29 billion points; one call still
+ * takes at most DBRG_MAX_POINTS points.
+ * ---------------------------------------------------------------------------------------------- */
+
+/* Reconstructs `points` as `tile_count` tiles run one after another in this process and stitches them:
+ * slabs along the longest axis of the points' box holding about equal numbers of points, each with a halo
+ * of 8 point spacings (the 90th percentile of nearest-neighbour distances), seam strips of 3 spacings on
+ * each side of a wall regrown from the surface around them. The mesh depends on the tiling (tile_count and the
+ * points), never on the order tiles run. Fills *out_mesh like dbrg_reconstruct, with the statistics
+ * tiles, seam_faces_dropped and tile_peak_bytes; unique_points counts every input point (duplicates are
+ * merged within tiles) and the times are summed over the tiles. tile_count 0 or 1 is dbrg_reconstruct.
+ * Returns DBRG_OK or the status of the first problem, whose message names the tile.
+ * points: the input, at most DBRG_MAX_POINTS points; read during the call only.
+ * tile_count: the number of slabs wanted; fewer where a slab would be thinner than 12 spacings (the
+ *   strips around its walls) — a small cloud runs as one piece — and where points share a coordinate.
+ * params: NULL for the defaults; its progress callback hears DBRG_STAGE_GROW as the share of tiles done.
+ * out_mesh: as in dbrg_reconstruct. */
+DBRG_API dbrg_status dbrg_reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, const dbrg_params* params,
+                                            dbrg_mesh** out_mesh);
+
+/* The triangles of one tile or of a stitch, as 64-bit global point ids. */
+typedef struct dbrg_tile_mesh dbrg_tile_mesh;
+
+/* Reconstructs one tile: the surface of `points` (the points of its core and its halo) and, of it, the
+ * triangles the core owns: those whose centroid, (a + b + c) / 3 in double precision with the corners
+ * summed in lexicographic order of their coordinates, lies in the half-open box [core_low, core_high).
+ * Every tile computes the same centroid for a triangle and half-open cores partition space, so no
+ * triangle has two owners.
+ * Returns DBRG_OK or the status of the first problem, as dbrg_reconstruct.
+ * points: the tile's points; read during the call only.
+ * point_ids: points->count global ids, distinct; read during the call only.
+ * core_low, core_high: 3 bounds each; -HUGE_VAL and HUGE_VAL for an unbounded side.
+ * params: NULL for the defaults; otherwise initialised with dbrg_params_init.
+ * out: receives a result object as dbrg_reconstruct's out_mesh does; destroy it with
+ *   dbrg_tile_mesh_destroy. */
+DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint64_t* point_ids, const double* core_low,
+                                           const double* core_high, const dbrg_params* params, dbrg_tile_mesh** out);
+
+/* Grows a surface from a given partial one: puts the seed triangles into the surface (those that do not
+ * fit it as an oriented manifold are left out), then region growing runs from their boundary edges over
+ * the Delaunay tetrahedralization of `points` with the usual candidate order, examinations and
+ * open-surface test, followed by hole filling's Delaunay pass over the edges left unresolved, its ears
+ * over the holes that pass through no fixed point, and the edge flips (no handle cut). No new triangle
+ * uses a fixed point, and a fixed point where the seeds meet in two fans keeps both. The seam stitch of
+ * tiled reconstruction, and a way to impose seeds or a border. The result holds the whole surface, the seeds that fitted included. Points all in one plane
+ * give DBRG_ERR_DEGENERATE_INPUT.
+ * points, point_ids: as in dbrg_reconstruct_tile.
+ * seed_triangles: 3 * seed_count global ids of `points`, each triangle counter-clockwise and all oriented
+ *   alike; a triangle with an id not among point_ids is left out. May be NULL when seed_count is 0
+ *   (then nothing grows).
+ * fixed: NULL, or points->count flags: non-zero marks a point no new triangle may use (its fan is
+ *   complete outside these points).
+ * params, out: as in dbrg_reconstruct_tile. */
+DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uint64_t* point_ids,
+                                            const uint64_t* seed_triangles, size_t seed_count, const uint8_t* fixed,
+                                            const dbrg_params* params, dbrg_tile_mesh** out);
+
+/* Frees a tile result. NULL is accepted and ignored. */
+DBRG_API void dbrg_tile_mesh_destroy(dbrg_tile_mesh* mesh);
+
+/* Returns the status of the call that made `mesh` (DBRG_ERR_INVALID_ARGUMENT for NULL). */
+DBRG_API dbrg_status dbrg_tile_mesh_status(const dbrg_tile_mesh* mesh);
+
+/* Returns a NUL-terminated message on what went wrong, or "". NULL gives "". */
+DBRG_API const char* dbrg_tile_mesh_message(const dbrg_tile_mesh* mesh);
+
+/* Returns the number of triangles (0 for NULL or a failed call). */
+DBRG_API uint64_t dbrg_tile_mesh_triangle_count(const dbrg_tile_mesh* mesh);
+
+/* Returns 3 * dbrg_tile_mesh_triangle_count global point ids, each triangle counter-clockwise as grown
+ * (a tile's piece of a closed surface is open: orient the pieces together after stitching). NULL when
+ * there are none. */
+DBRG_API const uint64_t* dbrg_tile_mesh_triangles(const dbrg_tile_mesh* mesh);
+
+/* Copies the statistics of the call, as dbrg_mesh_stats. */
+DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats* stats);
 
 /* ------------------------------------------------------------------------------------------------
  * Delaunay tetrahedralization — EXPERIMENTAL

@@ -55,6 +55,9 @@ const char* const RECONSTRUCT_USAGE =
     "  --outliers FILE          write the indices of the points left out as outliers, one a line\n"
     "  --threads N              threads for the stages that split (0: all, default; 1: none);\n"
     "                           the mesh is the same for any N\n"
+    "  --tiles N                reconstruct N slabs along the longest axis one after another and\n"
+    "                           stitch them (docs/tiles.md): the memory of about one slab at a time\n"
+    "                           besides the points; the mesh depends on N (default 1: one piece)\n"
     "  --no-normals             write no vertex normals\n"
     "  --drop-unused            write only the vertices the triangles use (renumbered, in input order)\n"
     "  --snapshots K            also write the surface at K evenly spaced stages of growth (points\n"
@@ -63,6 +66,9 @@ const char* const RECONSTRUCT_USAGE =
     "  --stats-json FILE        write figures about the run as JSON (- for standard output)\n"
     "  -q, --quiet              no progress bar\n"
     "  -h, --help               show this help\n";
+
+// More slabs than this would be thinner than their own halo on any cloud that fits in memory.
+const uint32_t MAX_TILES = 4096;
 
 // A demo this large already needs tens of gigabytes; larger ones are better read from a file.
 const uint32_t MAX_DEMO_POINTS = 100000000;
@@ -170,7 +176,21 @@ uint32_t faces_filled(const dbrg_mesh* mesh) {
     return count;
 }
 
+// Reads --tiles; returns false with a message for a malformed value or one that does not combine.
+bool read_tiles(const ParsedArgs& args, const dbrg_params& params, uint32_t& tiles, std::string& error) {
+    tiles = 1;
+    if (!args.has("--tiles")) return true;
+    if (!parse_count(args.value("--tiles"), tiles) || tiles < 1 || tiles > MAX_TILES) {
+        return error = "--tiles takes a whole number from 1 to " + std::to_string(MAX_TILES), false;
+    }
+    // Snapshots show one growing surface; tiles grow several.
+    if (tiles > 1 && params.snapshot_count > 0) return error = "--snapshots does not combine with --tiles", false;
+    return true;
+}
+
 std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double seconds_read, double seconds_write) {
+    // A single call ran as one tile, which held everything the library held.
+    const bool tiled = s.tiles > 1;
     io::JsonObject json;
     json.add_unsigned("points", s.input_points)
         .add_unsigned("unique_points", s.unique_points)
@@ -216,6 +236,9 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_number("seconds_total", s.seconds_total)
         .add_number("seconds_write", seconds_write)
         .add_unsigned("library_peak_bytes", s.peak_bytes)
+        .add_unsigned("tiles", tiled ? s.tiles : 1)
+        .add_unsigned("tile_peak_bytes", tiled ? s.tile_peak_bytes : s.peak_bytes)
+        .add_unsigned("seam_faces_dropped", s.seam_faces_dropped)
         .add_unsigned("peak_rss_bytes", peak_rss_bytes());
     return json.str() + "\n";
 }
@@ -229,7 +252,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--sliver-angle", nullptr, true}, {"--no-fill-holes", nullptr, false},  {"--max-hole-edges", nullptr, true},
         {"--max-components", nullptr, true}, {"--backend", nullptr, true},       {"--stats-json", nullptr, true},
         {"--threads", nullptr, true},      {"--snapshots", nullptr, true},       {"--quiet", "-q", false},
-        {"--no-normals", nullptr, false},  {"--drop-unused", nullptr, false},
+        {"--no-normals", nullptr, false},  {"--drop-unused", nullptr, false},     {"--tiles", nullptr, true},
         {"--cleaning", nullptr, true},     {"--output-smoothed", nullptr, false}, {"--outliers", nullptr, true},
     };
     ParsedArgs args;
@@ -257,7 +280,9 @@ int run_reconstruct(int argc, char** argv) {
     }
     dbrg_params params;
     Demo demo;
-    if (!read_params(args, params, error) || (args.has("--demo") && !read_demo(args, demo, error))) {
+    uint32_t tiles;
+    if (!read_params(args, params, error) || !read_tiles(args, params, tiles, error) ||
+        (args.has("--demo") && !read_demo(args, demo, error))) {
         return report_error(EXIT_USAGE, "reconstruct: " + error);
     }
     io::MeshData mesh;
@@ -289,7 +314,8 @@ int run_reconstruct(int argc, char** argv) {
     }
     const dbrg_points points{mesh.positions.data(), mesh.vertex_count(), 3 * sizeof(double), DBRG_FLOAT64};
     dbrg_mesh* result = nullptr;
-    const dbrg_status status = dbrg_reconstruct(&points, &params, &result);
+    const dbrg_status status = tiles > 1 ? dbrg_reconstruct_tiled(&points, tiles, &params, &result)
+                                         : dbrg_reconstruct(&points, &params, &result);
     bar.finish();
     if (!snapshots.error.empty()) {
         dbrg_mesh_destroy(result);

@@ -39,6 +39,8 @@ public:
     // Also counts this object's bytes in `meter` from now on (bytes already held included), or stops
     // counting them with NULL. The meter must outlive the counting.
     void count_in(MemoryMeter* meter);
+    // The meter this object counts in, or NULL.
+    MemoryMeter* meter() const { return meter_; }
 
 private:
     void add(size_t added, size_t removed);

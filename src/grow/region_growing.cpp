@@ -123,6 +123,55 @@ dbrg_status RegionGrower::grow() {
     return stage.report(1, 1);
 }
 
+dbrg_status RegionGrower::grow_from(const uint32_t* seeds, size_t seed_count, const uint8_t* fixed) {
+    const ProgressSpan stage(context_, DBRG_STAGE_GROW);
+    DBRG_PROPAGATE(stage.report(0, 1));
+    const uint32_t n = delaunay_.vertex_count();
+    const size_t expected_faces = 2 * size_t(n);
+    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
+        return context_.fail_out_of_memory();
+    }
+    for (size_t i = 0; i < seed_count; ++i) {
+        const uint32_t a = seeds[3 * i], b = seeds[3 * i + 1], c = seeds[3 * i + 2];
+        if (a >= n || b >= n || c >= n || a == b || b == c || a == c) continue;
+        const FaceCheck check = surface_.check_face(a, b, c);
+        if (check.verdict != FaceCheck::valid) continue;
+        // A face that is no Delaunay triangle of these points gets no tetrahedron: nothing grows from it.
+        const uint32_t f = surface_.add_face(a, b, c, tet_with_face(a, b, c), check);
+        if (f == NO_FACE) return context_.fail_out_of_memory();
+        radius_sum_ += circumradius(delaunay_.point(a), delaunay_.point(b), delaunay_.point(c));
+    }
+    if (!causes_.cover_faces(surface_.face_count())) return context_.fail_out_of_memory();
+    fixed_ = fixed;
+    for (uint32_t h = 0; h < 3 * surface_.face_count(); ++h) {
+        if (surface_.is_boundary(h)) DBRG_PROPAGATE(propose(h, nullptr));
+    }
+    DBRG_PROPAGATE(grow_component(stage.part(0, GROW_PROGRESS_FLIPS)));
+    release_queues();
+    Array<uint32_t> removed(context_.memory);
+    DBRG_PROPAGATE(resolve_pinches(removed));
+    DBRG_PROPAGATE(flipper_.flip_all(radius_sum_, stage.part(GROW_PROGRESS_FLIPS, 1)));
+    components_ = 1;
+    context_.stats.components = components_;
+    return stage.report(1, 1);
+}
+
+// A finite tetrahedron with face (a, b, c), or NO_TET when (a, b, c) is no Delaunay triangle.
+uint32_t RegionGrower::tet_with_face(uint32_t a, uint32_t b, uint32_t c) const {
+    Array<uint32_t> star(context_.memory);
+    if (!delaunay_.tets_around_vertex(a, star)) return NO_TET;
+    for (uint32_t t : star) {
+        if (!delaunay_.tet_is_finite(t)) continue;
+        bool has_b = false, has_c = false;
+        for (uint32_t lv = 0; lv < 4; ++lv) {
+            has_b = has_b || delaunay_.tet_vertex(t, lv) == b;
+            has_c = has_c || delaunay_.tet_vertex(t, lv) == c;
+        }
+        if (has_b && has_c) return t;
+    }
+    return NO_TET;
+}
+
 // Tries vertex v as a seed: grows a component from its seed triangle, if it has one, and resolves the
 // pinches left. Appends the faces that pinch resolution removed to `removed`.
 dbrg_status RegionGrower::try_seed(uint32_t v, Array<uint32_t>& removed, const ProgressSpan& progress) {
@@ -271,7 +320,8 @@ dbrg_status RegionGrower::reject(const Candidate& c, CandidateVerdict verdict) {
     case CandidateVerdict::bowtie: ++stats.rejected_bowtie; break;
     case CandidateVerdict::dihedral: ++stats.rejected_dihedral; break;
     case CandidateVerdict::valid:
-    case CandidateVerdict::pinch: break;
+    case CandidateVerdict::pinch:
+    case CandidateVerdict::fixed: break;
     }
     // The edge moves on to its next-best candidate (§3.2.2).
     const CandidateRank rejected = rank(c);
@@ -331,6 +381,10 @@ bool RegionGrower::select_candidate(uint32_t halfedge, const CandidateRank* afte
 // (§3.1.3) over the neighbours the triangle would have.
 RegionGrower::CandidateVerdict RegionGrower::examine(const Candidate& c, double& smoothness, FaceCheck& check) const {
     const uint32_t u = surface_.origin(c.halfedge), v = surface_.target(c.halfedge);
+    if (fixed_ && (fixed_[u] || fixed_[v] || fixed_[c.apex])) {
+        smoothness = -1;  // the least smooth: it is refused, never ranked
+        return CandidateVerdict::fixed;
+    }
     const Vec3 normal = triangle_normal(delaunay_.point(v), delaunay_.point(u), delaunay_.point(c.apex));
     check = surface_.check_face(v, u, c.apex);
     smoothness = dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(c.halfedge)));
@@ -467,7 +521,7 @@ dbrg_status RegionGrower::remove_islands(const ProgressSpan& progress) {
 // Vertices still pinched when growing stops keep only their largest fan (Surface::remove_pinches).
 dbrg_status RegionGrower::resolve_pinches(Array<uint32_t>& removed) {
     const size_t first = removed.size();
-    if (!surface_.remove_pinches(removed)) return context_.fail_out_of_memory();
+    if (!surface_.remove_pinches(removed, fixed_)) return context_.fail_out_of_memory();
     for (size_t i = first; i < removed.size(); ++i) radius_sum_ -= face_radius(delaunay_, surface_, removed[i]);
     context_.stats.pinch_faces_removed += static_cast<uint32_t>(removed.size() - first);
     return DBRG_OK;

@@ -37,6 +37,14 @@ public:
     // of context.stats.
     dbrg_status grow();
 
+    // Grows S from a given partial surface instead of seeds of its own: `seed_count` faces, 3 corners each
+    // in `seeds` (counter-clockwise, consistently oriented), are put into S first (those that do not fit
+    // it as a manifold are skipped), then growing runs from their boundary edges and the edges are flipped,
+    // as in grow(). No new face uses a vertex marked in `fixed` (NULL: none): a fixed vertex's fan is
+    // complete outside these points. Adds nothing where the seeds leave no front. Reports DBRG_STAGE_GROW
+    // progress.
+    dbrg_status grow_from(const uint32_t* seeds, size_t seed_count, const uint8_t* fixed);
+
     // Gives every boundary edge left unresolved (a hole) a fresh pass over all its candidates: S has
     // changed around it since it was last examined. The first step of hole filling (§5): Delaunay
     // triangles before ears. Here the open-surface test (§4) weighs each candidate against the faces
@@ -64,12 +72,13 @@ public:
 
 private:
     // The examinations' verdict on a candidate; FaceCheck::Verdict is the topological part of it.
-    enum class CandidateVerdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral };
+    enum class CandidateVerdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral, fixed };
 
     dbrg_status grow_component(const ProgressSpan& progress);
     dbrg_status drain_queue(const ProgressSpan& progress);
     dbrg_status report_grown(const ProgressSpan& progress) const;
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
+    uint32_t tet_with_face(uint32_t a, uint32_t b, uint32_t c) const;
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
     CandidateVerdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
     CandidateVerdict examine_again(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
@@ -112,6 +121,7 @@ private:
     uint32_t examined_next_ = 0;
     bool local_boundary_test_ = false;  // regrow_holes: §4 against the faces around the edge
     uint8_t new_face_flags_ = 0;        // FACE_* bits of the faces added: FACE_FILLED in regrow_holes
+    const uint8_t* fixed_ = nullptr;    // grow_from: vertices no new face may use
     EdgeFlipper flipper_;
 };
 

@@ -94,7 +94,15 @@ bool HoleFiller::collect_hole(uint32_t start, Array<uint32_t>& loop) const {
     const bool collected = surface_.walk_loop(start, [&](uint32_t h) {
         return loop.size() < context_.params.max_hole_edges && loop.push_back(h);
     });
-    return collected && (filling_cut_ || is_hole(loop));
+    return collected && !through_fixed(loop) && (filling_cut_ || is_hole(loop));
+}
+
+bool HoleFiller::through_fixed(const Array<uint32_t>& loop) const {
+    if (!fixed_) return false;
+    for (uint32_t h : loop) {
+        if (fixed_[surface_.origin(h)]) return true;
+    }
+    return false;
 }
 
 bool HoleFiller::is_hole(const Array<uint32_t>& loop) const {
@@ -136,7 +144,7 @@ uint32_t HoleFiller::count_holes() const {
             return loop.push_back(g);
         });
         if (!collected) return 0;
-        holes += is_hole(loop) ? 1 : 0;
+        holes += is_hole(loop) && !through_fixed(loop) ? 1 : 0;
     }
     return holes;
 }
@@ -253,7 +261,7 @@ dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, FaceJournal& journa
         DBRG_PROPAGATE(remove_and_record(f, journal));
     }
     // Removing faces can pinch a vertex; the surface must stay a manifold in between.
-    if (!surface_.remove_pinches(pinched)) return context_.fail_out_of_memory();
+    if (!surface_.remove_pinches(pinched, fixed_)) return context_.fail_out_of_memory();
     bool grown = true;
     for (uint32_t f : pinched) {
         grown = grown && record_removed(f, journal);

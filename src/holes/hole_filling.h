@@ -45,6 +45,10 @@ public:
     // change in between (regrowing adds faces with causes of their own).
     HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes, Context& context);
 
+    // Loops through a vertex marked in `fixed` (NULL: none) are no holes: a fixed vertex's fan is complete
+    // outside the points at hand (RegionGrower::grow_from), so such a loop is where they end.
+    void keep_fixed(const uint8_t* fixed) { fixed_ = fixed; }
+
     // Counts the holes (is_hole) into context.stats.holes_found; `found` tells whether there are any.
     dbrg_status find_holes(bool& found);
 
@@ -97,6 +101,7 @@ private:
     // max_hole_edges, or when it is a border (is_hole).
     bool collect_hole(uint32_t start, Array<uint32_t>& loop) const;
     uint32_t count_holes() const;
+    bool through_fixed(const Array<uint32_t>& loop) const;
     // Fills the hole through the boundary half-edge from u to v within the sliver fold limit, and where
     // that fails once more at LAST_RESORT_FOLD_ANGLE; a failed attempt is undone. Enlarges the hole at
     // most `enlargements` times per attempt.
@@ -123,6 +128,7 @@ private:
     // Faces restored after a failed attempt get new ids; their open-surface edges stay marked here.
     Array<uint8_t> restored_open_;  // per half-edge of faces added by this stage, from added_base_ on
     uint32_t added_base_ = 0;
+    const uint8_t* fixed_ = nullptr;
     bool filling_cut_ = false;  // the loops being filled were cut open by remove_small_handles: never borders
     uint32_t handles_removed_ = 0;
     uint32_t handle_triangles_removed_ = 0;

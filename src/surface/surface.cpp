@@ -166,9 +166,16 @@ bool Surface::remove_face(uint32_t f) {
     return true;
 }
 
-bool Surface::remove_pinches(Array<uint32_t>& removed) {
-    while (pinched_vertices_ > 0) {
-        const uint32_t v = first_pinched_vertex();
+bool Surface::remove_pinches(Array<uint32_t>& removed, const uint8_t* spared) {
+    for (;;) {
+        uint32_t v = NO_HALFEDGE;
+        for (const ExtraFan& fan : extra_fans_) {
+            if (!spared || !spared[fan.vertex]) {
+                v = fan.vertex;
+                break;
+            }
+        }
+        if (v == NO_HALFEDGE) break;
         uint32_t largest = NO_HALFEDGE, largest_size = 0;
         for_each_fan(v, [&](uint32_t start) {
             const uint32_t size = fan_size(start);

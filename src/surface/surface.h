@@ -141,8 +141,9 @@ public:
 
     // Leaves every pinched vertex with its largest fan alone by removing the faces of its other fans (the
     // removals can pinch further vertices, which are treated in turn). Appends the ids of the removed faces
-    // to `removed`. Returns false on allocation failure.
-    bool remove_pinches(Array<uint32_t>& removed);
+    // to `removed`. Vertices marked in `spared` (NULL: none) stay pinched: their other faces lie outside
+    // this surface (RegionGrower::grow_from's fixed vertices). Returns false on allocation failure.
+    bool remove_pinches(Array<uint32_t>& removed, const uint8_t* spared = nullptr);
 
     // Numbers the connected components (faces joined through edges) 0, 1, ...: face_component[f] for each
     // live face, NO_FACE for removed ones. Returns the number of components, or NO_FACE on allocation failure

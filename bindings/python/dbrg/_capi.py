@@ -162,6 +162,9 @@ class dbrg_stats(ctypes.Structure):
         ("smoothing_iterations", c_uint32),
         ("noise_level", c_double),
         ("seconds_clean", c_double),
+        ("tiles", c_uint32),
+        ("seam_faces_dropped", c_uint32),
+        ("tile_peak_bytes", c_size_t),
     ]
 
 
@@ -170,13 +173,20 @@ class dbrg_mesh(ctypes.Structure):
     pass
 
 
+class dbrg_tile_mesh(ctypes.Structure):
+    pass
+
+
 class dbrg_tetrahedralization(ctypes.Structure):
     pass
 
 
 mesh_p = POINTER(dbrg_mesh)
+tile_mesh_p = POINTER(dbrg_tile_mesh)
 tets_p = POINTER(dbrg_tetrahedralization)
 u32_p = POINTER(c_uint32)
+u64_p = POINTER(c_uint64)
+f64_p = POINTER(c_double)
 
 # name: (result type, argument types), in the header's order. Strings come back as bytes.
 FUNCTIONS = {
@@ -199,6 +209,17 @@ FUNCTIONS = {
     "dbrg_mesh_face_flags": (POINTER(ctypes.c_uint8), [mesh_p]),
     "dbrg_mesh_smoothed_points": (POINTER(c_double), [mesh_p]),
     "dbrg_mesh_stats": (c_enum, [mesh_p, POINTER(dbrg_stats)]),
+    "dbrg_reconstruct_tiled": (c_enum, [POINTER(dbrg_points), c_uint32, POINTER(dbrg_params), POINTER(mesh_p)]),
+    "dbrg_reconstruct_tile": (c_enum, [POINTER(dbrg_points), u64_p, f64_p, f64_p, POINTER(dbrg_params),
+                                       POINTER(tile_mesh_p)]),
+    "dbrg_grow_from_surface": (c_enum, [POINTER(dbrg_points), u64_p, u64_p, c_size_t, POINTER(ctypes.c_uint8),
+                                        POINTER(dbrg_params), POINTER(tile_mesh_p)]),
+    "dbrg_tile_mesh_destroy": (None, [tile_mesh_p]),
+    "dbrg_tile_mesh_status": (c_enum, [tile_mesh_p]),
+    "dbrg_tile_mesh_message": (c_char_p, [tile_mesh_p]),
+    "dbrg_tile_mesh_triangle_count": (c_uint64, [tile_mesh_p]),
+    "dbrg_tile_mesh_triangles": (u64_p, [tile_mesh_p]),
+    "dbrg_tile_mesh_stats": (c_enum, [tile_mesh_p, POINTER(dbrg_stats)]),
     "dbrg_tetrahedralize": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_params), POINTER(tets_p)]),
     "dbrg_tetrahedralization_destroy": (None, [tets_p]),
     "dbrg_tetrahedralization_status": (c_enum, [tets_p]),

@@ -151,11 +151,20 @@ pub struct dbrg_stats {
     pub smoothing_iterations: u32,
     pub noise_level: f64,
     pub seconds_clean: f64,
+    pub tiles: u32,
+    pub seam_faces_dropped: u32,
+    pub tile_peak_bytes: usize,
 }
 
 /// Opaque result of `dbrg_reconstruct`.
 #[repr(C)]
 pub struct dbrg_mesh {
+    _private: [u8; 0],
+}
+
+/// Opaque result of `dbrg_reconstruct_tile` and `dbrg_grow_from_surface`.
+#[repr(C)]
+pub struct dbrg_tile_mesh {
     _private: [u8; 0],
 }
 
@@ -192,6 +201,36 @@ extern "C" {
     pub fn dbrg_mesh_face_flags(mesh: *const dbrg_mesh) -> *const u8;
     pub fn dbrg_mesh_smoothed_points(mesh: *const dbrg_mesh) -> *const f64;
     pub fn dbrg_mesh_stats(mesh: *const dbrg_mesh, stats: *mut dbrg_stats) -> dbrg_status;
+
+    pub fn dbrg_reconstruct_tiled(
+        points: *const dbrg_points,
+        tile_count: u32,
+        params: *const dbrg_params,
+        out_mesh: *mut *mut dbrg_mesh,
+    ) -> dbrg_status;
+    pub fn dbrg_reconstruct_tile(
+        points: *const dbrg_points,
+        point_ids: *const u64,
+        core_low: *const f64,
+        core_high: *const f64,
+        params: *const dbrg_params,
+        out: *mut *mut dbrg_tile_mesh,
+    ) -> dbrg_status;
+    pub fn dbrg_grow_from_surface(
+        points: *const dbrg_points,
+        point_ids: *const u64,
+        seed_triangles: *const u64,
+        seed_count: usize,
+        fixed: *const u8,
+        params: *const dbrg_params,
+        out: *mut *mut dbrg_tile_mesh,
+    ) -> dbrg_status;
+    pub fn dbrg_tile_mesh_destroy(mesh: *mut dbrg_tile_mesh);
+    pub fn dbrg_tile_mesh_status(mesh: *const dbrg_tile_mesh) -> dbrg_status;
+    pub fn dbrg_tile_mesh_message(mesh: *const dbrg_tile_mesh) -> *const c_char;
+    pub fn dbrg_tile_mesh_triangle_count(mesh: *const dbrg_tile_mesh) -> u64;
+    pub fn dbrg_tile_mesh_triangles(mesh: *const dbrg_tile_mesh) -> *const u64;
+    pub fn dbrg_tile_mesh_stats(mesh: *const dbrg_tile_mesh, stats: *mut dbrg_stats) -> dbrg_status;
 
     pub fn dbrg_tetrahedralize(
         points: *const dbrg_points,

@@ -1,0 +1,117 @@
+// Point spacing: a high percentile of nearest-neighbour distances over a hash-chosen sample (see
+// point_spacing.h).
+#include "tiles/point_spacing.h"
+
+#include <math.h>
+#include <string.h>
+
+#include <algorithm>
+
+#include "core/array.h"
+#include "core/splitmix64.h"
+
+namespace dbrg {
+namespace {
+
+const size_t SAMPLE_POINTS = 4096;
+// Rings of cells searched around a sample point before it is given up (an isolated outlier).
+const int MAX_RINGS = 16;
+
+struct CellEntry {
+    uint64_t key;
+    uint32_t point;
+};
+
+// The cell grid: cells of side `cell` from `low`, keyed by 21 bits per axis.
+struct CellGrid {
+    double low[3];
+    double cell;
+
+    int64_t coordinate(const double* p, int axis) const { return static_cast<int64_t>((p[axis] - low[axis]) / cell); }
+    static uint64_t key(int64_t x, int64_t y, int64_t z) { return uint64_t(x) << 42 | uint64_t(y) << 21 | uint64_t(z); }
+};
+
+uint64_t coordinate_hash(const double* p) {
+    uint64_t bits[3];
+    memcpy(bits, p, sizeof bits);
+    return SplitMix64(bits[0] ^ SplitMix64(bits[1] ^ SplitMix64(bits[2]).next()).next()).next();
+}
+
+// Distance from point `i` to its nearest other point, searching rings of cells outward; HUGE_VAL when
+// none is within MAX_RINGS cells.
+double nearest_distance(const double* xyz, size_t i, const CellGrid& grid, const Array<CellEntry>& cells) {
+    const double* p = xyz + 3 * i;
+    const int64_t c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
+    const int64_t limit = int64_t(1) << 21;
+    double best = HUGE_VAL;
+    for (int ring = 0; ring <= MAX_RINGS; ++ring) {
+        for (int64_t x = c[0] - ring; x <= c[0] + ring; ++x) {
+            for (int64_t y = c[1] - ring; y <= c[1] + ring; ++y) {
+                for (int64_t z = c[2] - ring; z <= c[2] + ring; ++z) {
+                    const bool shell = x == c[0] - ring || x == c[0] + ring || y == c[1] - ring ||
+                                       y == c[1] + ring || z == c[2] - ring || z == c[2] + ring;
+                    if (!shell || x < 0 || y < 0 || z < 0 || x >= limit || y >= limit || z >= limit) continue;
+                    const uint64_t key = CellGrid::key(x, y, z);
+                    const CellEntry* at = std::lower_bound(cells.begin(), cells.end(), key,
+                                                           [](const CellEntry& e, uint64_t k) { return e.key < k; });
+                    for (; at != cells.end() && at->key == key; ++at) {
+                        const double* q = xyz + 3 * size_t(at->point);
+                        const double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
+                        const double d = sqrt(dx * dx + dy * dy + dz * dz);
+                        if (d > 0 && d < best) best = d;
+                    }
+                }
+            }
+        }
+        // Every point of a later ring is at least `ring` cells away.
+        if (best <= ring * grid.cell) break;
+    }
+    return best;
+}
+
+} // namespace
+
+dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, double& spacing) {
+    spacing = 0;
+    if (count < 2) return DBRG_OK;
+    CellGrid grid;
+    double high[3];
+    for (int axis = 0; axis < 3; ++axis) grid.low[axis] = high[axis] = xyz[axis];
+    for (size_t i = 0; i < count; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            grid.low[axis] = std::min(grid.low[axis], xyz[3 * i + axis]);
+            high[axis] = std::max(high[axis], xyz[3 * i + axis]);
+        }
+    }
+    const double extent = std::max({high[0] - grid.low[0], high[1] - grid.low[1], high[2] - grid.low[2]});
+    if (!(extent > 0)) return DBRG_OK;
+    // Points on a surface of about the box's size are about extent / sqrt(count) apart: a cell or two.
+    grid.cell = std::max(extent / sqrt(double(count)), extent * 0x1p-20);
+    Array<CellEntry> cells(context.memory);
+    if (!cells.reserve(count)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) {
+        const double* p = xyz + 3 * i;
+        cells.push_back({CellGrid::key(grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)),
+                         static_cast<uint32_t>(i)});
+    }
+    std::sort(cells.begin(), cells.end(), [](const CellEntry& a, const CellEntry& b) {
+        return a.key != b.key ? a.key < b.key : a.point < b.point;
+    });
+    const uint64_t stride = std::max<uint64_t>(1, count / SAMPLE_POINTS);
+    Array<double> distances(context.memory);
+    for (size_t i = 0; i < count; ++i) {
+        if (coordinate_hash(xyz + 3 * i) % stride != 0) continue;
+        const double d = nearest_distance(xyz, i, grid, cells);
+        if (d != HUGE_VAL && !distances.push_back(d)) return context.fail_out_of_memory();
+    }
+    if (distances.empty()) {
+        spacing = grid.cell;
+        return DBRG_OK;
+    }
+    double* percentile = distances.begin() + distances.size() * 9 / 10;
+    std::nth_element(distances.begin(), percentile, distances.end());
+    spacing = *percentile;
+    return DBRG_OK;
+}
+
+} // namespace dbrg

@@ -1,0 +1,315 @@
+// Tiled reconstruction: tiles reconstructed one after another, their owned triangles oriented together,
+// the seam strips cut and regrown from the surface around them, and the whole assembled as one manifold
+// (docs/tiles.md).
+#include "tiles/tiled_reconstruction.h"
+
+#include <math.h>
+
+#include <algorithm>
+
+#include "core/status.h"
+#include "pipeline.h"
+#include "points/point_conditioning.h"
+#include "points/point_input.h"
+#include "delaunay/tetrahedralization.h"
+#include "surface/surface.h"
+#include "tiles/point_spacing.h"
+#include "tiles/triangle_orientation.h"
+
+namespace dbrg {
+namespace {
+
+const uint32_t NOT_IN_STRIP = UINT32_MAX;
+
+// The axis along which the box of the points is longest.
+int longest_axis(const double* xyz, size_t count) {
+    double low[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, high[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (size_t i = 0; i < count; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            low[axis] = std::min(low[axis], xyz[3 * i + axis]);
+            high[axis] = std::max(high[axis], xyz[3 * i + axis]);
+        }
+    }
+    int best = 0;
+    for (int axis = 1; axis < 3; ++axis) best = high[axis] - low[axis] > high[best] - low[best] ? axis : best;
+    return best;
+}
+
+// The inner walls of `tile_count` slabs along `axis` holding about equal numbers of points: quantiles of the
+// coordinates. A wall closer than `min_width` to the previous one or to either end of the points is dropped
+// (a slab thinner than the strips around its walls has no interior of its own), and so is a repeated one.
+dbrg_status slab_walls(const double* xyz, size_t count, int axis, uint32_t tile_count, double min_width,
+                       Context& context, Array<double>& walls) {
+    Array<double> values(context.memory);
+    if (!values.resize(count)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) values[i] = xyz[3 * i + axis];
+    std::sort(values.begin(), values.end());
+    for (uint32_t k = 1; k < tile_count; ++k) {
+        const double wall = values[count * k / tile_count];
+        const double previous = walls.empty() ? values[0] : walls[walls.size() - 1];
+        if (!(wall - previous >= min_width && values[count - 1] - wall >= min_width)) continue;
+        if (!walls.push_back(wall)) return context.fail_out_of_memory();
+    }
+    return DBRG_OK;
+}
+
+dbrg_points double_points(const Array<double>& xyz) {
+    return dbrg_points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+}
+
+// The parameters of one piece of the work (a tile, the stitch): the caller's without progress or snapshots.
+dbrg_params piece_params(const dbrg_params& params) {
+    dbrg_params piece = params;
+    piece.progress = nullptr;
+    piece.snapshot = nullptr;
+    piece.snapshot_count = 0;
+    return piece;
+}
+
+void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
+    total.tetrahedra += piece.tetrahedra;
+    total.candidates_evaluated += piece.candidates_evaluated;
+    total.rejected_edge_nonmanifold += piece.rejected_edge_nonmanifold;
+    total.rejected_orientation += piece.rejected_orientation;
+    total.rejected_bowtie += piece.rejected_bowtie;
+    total.rejected_dihedral += piece.rejected_dihedral;
+    total.rejected_boundary += piece.rejected_boundary;
+    total.holes_found += piece.holes_found;
+    total.holes_filled += piece.holes_filled;
+    total.holes_left_open += piece.holes_left_open;
+    total.hole_triangles_delaunay += piece.hole_triangles_delaunay;
+    total.hole_triangles_added += piece.hole_triangles_added;
+    total.hole_triangles_removed += piece.hole_triangles_removed;
+    total.handles_removed += piece.handles_removed;
+    total.pinch_faces_removed += piece.pinch_faces_removed;
+    total.predicate_calls += piece.predicate_calls;
+    total.predicate_filter_failures += piece.predicate_filter_failures;
+    total.predicate_perturbations += piece.predicate_perturbations;
+    total.seconds_sort += piece.seconds_sort;
+    total.seconds_delaunay += piece.seconds_delaunay;
+    total.seconds_grow += piece.seconds_grow;
+    total.seconds_fill_holes += piece.seconds_fill_holes;
+}
+
+// Reconstructs tile `k` of the slabs and appends its owned triangles, in the caller's indexing, to `owned`.
+dbrg_status run_tile(const Array<double>& xyz, int axis, const Array<double>& walls, uint32_t k, double halo,
+                     Context& context, Array<uint32_t>& owned) {
+    TileCore core;
+    for (int a = 0; a < 3; ++a) {
+        core.low[a] = -HUGE_VAL;
+        core.high[a] = HUGE_VAL;
+    }
+    if (k > 0) core.low[axis] = walls[k - 1];
+    if (k < walls.size()) core.high[axis] = walls[k];
+    Array<double> tile_xyz(context.memory);
+    Array<uint32_t> tile_index(context.memory);
+    const size_t count = xyz.size() / 3;
+    for (size_t i = 0; i < count; ++i) {
+        const double x = xyz[3 * i + axis];
+        if (x < core.low[axis] - halo || x >= core.high[axis] + halo) continue;
+        if (!tile_index.push_back(static_cast<uint32_t>(i))) return context.fail_out_of_memory();
+        for (int a = 0; a < 3; ++a) {
+            if (!tile_xyz.push_back(xyz[3 * i + a])) return context.fail_out_of_memory();
+        }
+    }
+    if (tile_index.size() < 4) return DBRG_OK;  // nothing to reconstruct; the stitch sees these points
+    Context tile_context(piece_params(context.params));
+    tile_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
+    Array<uint32_t> tile_owned(tile_context.memory);
+    const dbrg_points tile_points = double_points(tile_xyz);
+    const dbrg_status status = reconstruct_tile(&tile_points, core, tile_context, tile_owned);
+    if (status != DBRG_OK) return context.fail(status, "tile %u: %s", k + 1, tile_context.message());
+    add_piece_stats(tile_context.stats, context.stats);
+    context.stats.tile_peak_bytes = std::max(context.stats.tile_peak_bytes, tile_context.memory.peak_bytes());
+    if (!owned.reserve(owned.size() + tile_owned.size())) return context.fail_out_of_memory();
+    for (uint32_t v : tile_owned) owned.push_back(tile_index[v]);
+    return DBRG_OK;
+}
+
+// Where a point lies from the wall being stitched.
+enum Zone : uint8_t { FAR = 0, BAND = 1, STRIP = 2 };
+
+// Cuts the seam strip around `wall` out of `mesh` and regrows it from the surface around it (docs/tiles.md,
+// steps 2 and 3); `mesh` is left with the faces outside the strip and the regrown ones.
+dbrg_status stitch_strip(const Array<double>& xyz, int axis, double wall, double spacing, Context& context,
+                         Array<uint32_t>& mesh) {
+    const size_t count = xyz.size() / 3;
+    const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
+    // The band: the points within reach of the wall, and the corners of the faces cut (a long face can
+    // reach further where the sampling is uneven). The seeds: the kept faces with a corner in the band. The
+    // strip's points: the band and the seeds' other corners, which are fixed (their fans are complete
+    // outside, far from the faces cut), numbered in the caller's order.
+    Array<uint8_t> zone(context.memory);
+    if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) {
+        const double d = fabs(xyz[3 * i + axis] - wall);
+        zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
+    }
+    const auto is_cut = [&](const uint32_t* t) {
+        return zone[t[0]] == STRIP || zone[t[1]] == STRIP || zone[t[2]] == STRIP;
+    };
+    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+        const uint32_t* t = mesh.data() + 3 * f;
+        if (!is_cut(t)) continue;
+        for (int i = 0; i < 3; ++i) zone[t[i]] = zone[t[i]] == STRIP ? STRIP : BAND;
+    }
+    const auto is_seed = [&](const uint32_t* t) {
+        return !is_cut(t) && (zone[t[0]] != FAR || zone[t[1]] != FAR || zone[t[2]] != FAR);
+    };
+    Array<uint32_t> local(context.memory);
+    if (!local.resize(count, NOT_IN_STRIP)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) local[i] = zone[i] != FAR ? 0 : NOT_IN_STRIP;
+    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+        const uint32_t* t = mesh.data() + 3 * f;
+        if (!is_seed(t)) continue;
+        for (int i = 0; i < 3; ++i) local[t[i]] = 0;
+    }
+    Array<uint32_t> strip_index(context.memory);
+    Array<double> strip_xyz(context.memory);
+    Array<uint8_t> fixed(context.memory);
+    for (size_t i = 0; i < count; ++i) {
+        if (local[i] == NOT_IN_STRIP) continue;
+        local[i] = static_cast<uint32_t>(strip_index.size());
+        if (!strip_index.push_back(static_cast<uint32_t>(i)) || !fixed.push_back(zone[i] == FAR ? 1 : 0)) {
+            return context.fail_out_of_memory();
+        }
+        for (int a = 0; a < 3; ++a) {
+            if (!strip_xyz.push_back(xyz[3 * i + a])) return context.fail_out_of_memory();
+        }
+    }
+    // Faces outside the strip stay in `mesh`; the seeds go to the stitch.
+    Array<uint32_t> seeds(context.memory);
+    size_t kept = 0;
+    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+        const uint32_t* t = mesh.data() + 3 * f;
+        if (is_cut(t)) continue;
+        if (is_seed(t)) {
+            for (int i = 0; i < 3; ++i) {
+                if (!seeds.push_back(local[t[i]])) return context.fail_out_of_memory();
+            }
+            continue;
+        }
+        for (int i = 0; i < 3; ++i) mesh[3 * kept + i] = t[i];
+        ++kept;
+    }
+    mesh.shrink(3 * kept);
+    local.release();
+    zone.release();
+
+    Context stitch_context(piece_params(context.params));
+    stitch_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
+    SurfaceResult grown(stitch_context.memory);
+    const dbrg_points strip_points = double_points(strip_xyz);
+    const dbrg_status status = grow_from_surface(&strip_points, seeds.data(), seeds.size() / 3, fixed.data(),
+                                                 stitch_context, grown);
+    const Array<uint32_t>* strip_faces = &grown.triangles;
+    if (status == DBRG_ERR_TOO_FEW_POINTS || status == DBRG_ERR_DEGENERATE_INPUT) {
+        strip_faces = &seeds;  // no volume to grow in: the seeds stay as they were
+    } else if (status != DBRG_OK) {
+        return context.fail(status, "seam stitch: %s", stitch_context.message());
+    } else {
+        add_piece_stats(stitch_context.stats, context.stats);
+    }
+    context.stats.tile_peak_bytes = std::max(context.stats.tile_peak_bytes, stitch_context.memory.peak_bytes());
+    if (!mesh.reserve(mesh.size() + strip_faces->size())) return context.fail_out_of_memory();
+    for (uint32_t v : *strip_faces) mesh.push_back(strip_index[v]);
+    return DBRG_OK;
+}
+
+// Builds S from the stitched faces in the orientation walk's order, skipping those that would break the
+// manifold, and hands it over as the single call does.
+dbrg_status assemble(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result) {
+    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
+    const uint32_t count = static_cast<uint32_t>(xyz.size() / 3);
+    Surface surface(context.memory);
+    if (!surface.reset(count) || !surface.reserve_faces(mesh.size() / 3)) return context.fail_out_of_memory();
+    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+        const uint32_t a = mesh[3 * f], b = mesh[3 * f + 1], c = mesh[3 * f + 2];
+        const FaceCheck check = surface.check_face(a, b, c);
+        if (check.verdict != FaceCheck::valid) {
+            ++context.stats.seam_faces_dropped;
+            continue;
+        }
+        if (surface.add_face(a, b, c, NO_TET, check) == NO_FACE) return context.fail_out_of_memory();
+    }
+    mesh.release();
+    Array<uint32_t> removed(context.memory);
+    if (!surface.remove_pinches(removed)) return context.fail_out_of_memory();
+    context.stats.seam_faces_dropped += static_cast<uint32_t>(removed.size());
+    // The caller's points as the output stage expects them: every point its own vertex.
+    ConditionedPoints identity(context.memory);
+    identity.coordinates.swap(xyz);
+    if (!identity.input_index.resize(count)) return context.fail_out_of_memory();
+    for (uint32_t v = 0; v < count; ++v) identity.input_index[v] = v;
+    return emit_surface(surface, identity, context, result);
+}
+
+} // namespace
+
+bool TileCore::owns(const double* a, const double* b, const double* c) const {
+    const double* corners[3] = {a, b, c};
+    std::sort(corners, corners + 3,
+              [](const double* p, const double* q) { return std::lexicographical_compare(p, p + 3, q, q + 3); });
+    for (int axis = 0; axis < 3; ++axis) {
+        const double centroid = (corners[0][axis] + corners[1][axis] + corners[2][axis]) / 3;
+        if (!(centroid >= low[axis] && centroid < high[axis])) return false;
+    }
+    return true;
+}
+
+dbrg_status reconstruct_tile(const dbrg_points* points, const TileCore& core, Context& context,
+                             Array<uint32_t>& owned) {
+    SurfaceResult surface(context.memory);
+    DBRG_PROPAGATE(reconstruct_surface(points, context, surface));
+    Array<double> xyz(context.memory);
+    DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
+    for (size_t f = 0; f < surface.triangles.size() / 3; ++f) {
+        const uint32_t* t = surface.triangles.data() + 3 * f;
+        if (!core.owns(&xyz[3 * size_t(t[0])], &xyz[3 * size_t(t[1])], &xyz[3 * size_t(t[2])])) continue;
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t v = t[i];
+            if (!owned.push_back(v)) return context.fail_out_of_memory();
+        }
+    }
+    return DBRG_OK;
+}
+
+dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Context& context, SurfaceResult& result) {
+    context.stats.tiles = 1;
+    if (tile_count <= 1) return reconstruct_surface(points, context, result);
+    DBRG_PROPAGATE(context.report(DBRG_STAGE_VALIDATE, 0.0));
+    Array<double> xyz(context.memory);
+    DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
+    DBRG_PROPAGATE(check_point_count(points->count, context));
+    const size_t count = points->count;
+    double spacing;
+    DBRG_PROPAGATE(estimate_spacing(xyz.data(), count, context, spacing));
+    const int axis = longest_axis(xyz.data(), count);
+    Array<double> walls(context.memory);
+    DBRG_PROPAGATE(slab_walls(xyz.data(), count, axis, tile_count, MIN_SLAB_SPACINGS * spacing, context, walls));
+    if (walls.empty() || !(spacing > 0)) {
+        xyz.release();
+        return reconstruct_surface(points, context, result);
+    }
+    context.stats.tiles = static_cast<uint32_t>(walls.size() + 1);
+    context.stats.input_points = static_cast<uint32_t>(count);
+    context.stats.unique_points = static_cast<uint32_t>(count);
+
+    Array<uint32_t> mesh(context.memory);
+    for (uint32_t k = 0; k < context.stats.tiles; ++k) {
+        DBRG_PROPAGATE(context.report(DBRG_STAGE_GROW, double(k) / context.stats.tiles));
+        DBRG_PROPAGATE(run_tile(xyz, axis, walls, k, HALO_SPACINGS * spacing, context, mesh));
+    }
+    DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, 0.0));
+    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
+    // One wall at a time, so that the stitch holds one strip: slabs are at least as wide as two bands, so
+    // a strip meets only the faces its neighbours' stitches regrew at its edge, as kept surface.
+    for (size_t w = 0; w < walls.size(); ++w) {
+        DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, double(w) / walls.size()));
+        DBRG_PROPAGATE(stitch_strip(xyz, axis, walls[w], spacing, context, mesh));
+    }
+    DBRG_PROPAGATE(assemble(xyz, mesh, context, result));
+    return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
+}
+
+} // namespace dbrg

@@ -1,0 +1,145 @@
+// Triangle orientation: consistent orientation of a triangle soup across shared edges (see
+// triangle_orientation.h).
+#include "tiles/triangle_orientation.h"
+
+#include <math.h>
+
+#include <algorithm>
+
+#include "core/vec3.h"
+#include "grow/triangle_geometry.h"
+
+namespace dbrg {
+namespace {
+
+const uint32_t NO_NEIGHBOUR = UINT32_MAX;
+
+struct Triangle {
+    uint32_t v[3];
+    bool operator<(const Triangle& o) const { return std::lexicographical_compare(v, v + 3, o.v, o.v + 3); }
+};
+
+struct EdgeUse {
+    uint32_t low, high;
+    uint32_t face;
+    uint8_t forward;  // the face runs low -> high
+};
+
+// Rotates each triangle to start at its smallest index and sorts them.
+bool canonical_order(Array<uint32_t>& triangles, Array<Triangle>& sorted) {
+    const size_t faces = triangles.size() / 3;
+    if (!sorted.resize(faces)) return false;
+    for (size_t f = 0; f < faces; ++f) {
+        const uint32_t* t = triangles.data() + 3 * f;
+        const uint32_t first = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+        for (uint32_t i = 0; i < 3; ++i) sorted[f].v[i] = t[(first + i) % 3];
+    }
+    std::sort(sorted.begin(), sorted.end());
+    return true;
+}
+
+// Whether face t, turned over when `flip`, faces up by the seeding rule (+z, else +x, else +y).
+bool faces_up(const Triangle& t, bool flip, const double* xyz) {
+    const Vec3 a = load_vec3(xyz + 3 * size_t(t.v[0])), b = load_vec3(xyz + 3 * size_t(t.v[1]));
+    const Vec3 c = load_vec3(xyz + 3 * size_t(t.v[2]));
+    Vec3 n = cross(b - a, c - a);
+    if (flip) n = Vec3{-n.x, -n.y, -n.z};
+    return n.z != 0 ? n.z > 0 : (n.x != 0 ? n.x > 0 : n.y >= 0);
+}
+
+} // namespace
+
+dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, Context& context) {
+    Array<Triangle> faces(context.memory);
+    if (!canonical_order(triangles, faces)) return context.fail_out_of_memory();
+    const uint32_t count = static_cast<uint32_t>(faces.size());
+
+    // Neighbours across the edges exactly two faces share, and whether they run it the same way.
+    Array<EdgeUse> uses(context.memory);
+    Array<uint32_t> neighbour(context.memory);
+    Array<uint8_t> same_way(context.memory);
+    if (!uses.reserve(3 * size_t(count)) || !neighbour.resize(3 * size_t(count), NO_NEIGHBOUR) ||
+        !same_way.resize(3 * size_t(count), 0)) {
+        return context.fail_out_of_memory();
+    }
+    for (uint32_t f = 0; f < count; ++f) {
+        for (uint32_t i = 0; i < 3; ++i) {
+            const uint32_t a = faces[f].v[i], b = faces[f].v[(i + 1) % 3];
+            uses.push_back({std::min(a, b), std::max(a, b), f, uint8_t(a < b)});
+        }
+    }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+        return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.face < y.face;
+    });
+    const auto slot = [&](uint32_t f) {
+        uint32_t s = 3 * f;
+        while (neighbour[s] != NO_NEIGHBOUR) ++s;
+        return s;
+    };
+    for (size_t i = 0; i < uses.size();) {
+        size_t j = i;
+        while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
+        if (j - i == 2 && uses[i].face != uses[i + 1].face) {
+            const uint8_t same = uses[i].forward == uses[i + 1].forward;
+            const uint32_t s = slot(uses[i].face), t = slot(uses[i + 1].face);
+            neighbour[s] = uses[i + 1].face;
+            neighbour[t] = uses[i].face;
+            same_way[s] = same_way[t] = same;
+        }
+        i = j;
+    }
+    uses.release();
+
+    // Breadth-first from the first face of each component; `order` lists each component's faces together.
+    Array<uint8_t> flip(context.memory), seen(context.memory);
+    Array<uint32_t> order(context.memory);
+    if (!flip.resize(count, 0) || !seen.resize(count, 0) || !order.reserve(count)) return context.fail_out_of_memory();
+    for (uint32_t start = 0; start < count; ++start) {
+        if (seen[start]) continue;
+        const size_t first = order.size();
+        seen[start] = 1;
+        order.push_back(start);
+        for (size_t k = first; k < order.size(); ++k) {
+            const uint32_t f = order[k];
+            for (uint32_t s = 3 * f; s < 3 * f + 3 && neighbour[s] != NO_NEIGHBOUR; ++s) {
+                const uint32_t g = neighbour[s];
+                if (seen[g]) continue;
+                seen[g] = 1;
+                flip[g] = flip[f] ^ same_way[s];
+                order.push_back(g);
+            }
+        }
+        // The component's seed face: at its highest point, the smallest circumradius.
+        uint32_t top = faces[order[first]].v[0];
+        for (size_t k = first; k < order.size(); ++k) {
+            for (uint32_t v : faces[order[k]].v) {
+                const double z = xyz[3 * size_t(v) + 2], top_z = xyz[3 * size_t(top) + 2];
+                if (z > top_z || (z == top_z && v < top)) top = v;
+            }
+        }
+        uint32_t seed = NO_NEIGHBOUR;
+        double best = HUGE_VAL;
+        for (size_t k = first; k < order.size(); ++k) {
+            const Triangle& t = faces[order[k]];
+            if (t.v[0] != top && t.v[1] != top && t.v[2] != top) continue;
+            const double r = circumradius(xyz + 3 * size_t(t.v[0]), xyz + 3 * size_t(t.v[1]), xyz + 3 * size_t(t.v[2]));
+            if (r < best) {  // faces come in sorted order: a tie keeps the smaller one
+                best = r;
+                seed = order[k];
+            }
+        }
+        if (seed != NO_NEIGHBOUR && !faces_up(faces[seed], flip[seed] != 0, xyz)) {
+            for (size_t k = first; k < order.size(); ++k) flip[order[k]] ^= 1;
+        }
+    }
+    for (uint32_t k = 0; k < count; ++k) {
+        const uint32_t f = order[k];
+        const Triangle& t = faces[f];
+        triangles[3 * size_t(k)] = t.v[0];
+        triangles[3 * size_t(k) + 1] = t.v[flip[f] ? 2 : 1];
+        triangles[3 * size_t(k) + 2] = t.v[flip[f] ? 1 : 2];
+    }
+    return DBRG_OK;
+}
+
+} // namespace dbrg
