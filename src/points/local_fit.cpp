@@ -1,5 +1,5 @@
 // Local fit: the normal of least variance from the covariance's characteristic cubic, then a least-squares
-// quadric height function over the tangent plane (normal equations, Cholesky).
+// quadric height function over the tangent plane (normal equations, square-root-free Cholesky).
 #include "points/local_fit.h"
 
 #include <math.h>
@@ -7,12 +7,14 @@
 namespace dbrg {
 namespace {
 
-// Unit vectors u and v that make (u, v, n) orthonormal, for a unit vector n: u across the axis n is least along.
+// Unit vectors u and v that make (u, v, n) orthonormal, for a unit vector n, without a square root (the
+// rotation taking the z axis to n applied to the x and y axes; T. Duff et al., "Building an orthonormal basis,
+// revisited", JCGT 6(1), 2017).
 void orthonormal_basis(Vec3 n, Vec3& u, Vec3& v) {
-    const double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
-    const Vec3 axis = ax <= ay && ax <= az ? Vec3{1, 0, 0} : ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1};
-    u = normalized(cross(n, axis));
-    v = cross(n, u);
+    const double sign = n.z >= 0 ? 1.0 : -1.0;
+    const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+    u = Vec3{1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+    v = Vec3{b, sign + n.y * n.y * a, -n.y};
 }
 
 // The smallest eigenvalue of the symmetric positive semidefinite matrix `a` (a covariance) and a unit
@@ -71,32 +73,39 @@ Vec3 least_eigenvector(const double a[3][3], double& value) {
 
 constexpr int TERMS = 6;
 
-// Solves m x = b for a symmetric positive definite m by Cholesky; false when m is not (numerically) so.
-bool solve_cholesky(double m[TERMS][TERMS], double b[TERMS], double x[TERMS]) {
+// Solves m x = b for a symmetric positive definite m by its factors L D L^T (L unit lower triangular, no
+// square roots); false when m is not (numerically) positive definite.
+bool solve_cholesky(double m[TERMS][TERMS], const double b[TERMS], double x[TERMS]) {
     double largest = 0;
     for (int i = 0; i < TERMS; ++i) largest = fmax(largest, m[i][i]);
-    double inverse[TERMS];  // of the factor's diagonal: one division a column
+    double pivot[TERMS], inverse[TERMS];
     for (int j = 0; j < TERMS; ++j) {
+        // Row j of L D, in the strict lower triangle, before it is divided by the pivots.
+        double scaled[TERMS];
         double d = m[j][j];
-        for (int k = 0; k < j; ++k) d -= m[j][k] * m[j][k];
+        for (int k = 0; k < j; ++k) {
+            scaled[k] = m[j][k] * pivot[k];
+            d -= m[j][k] * scaled[k];
+        }
         // A pivot this small relative to the largest diagonal entry: the points do not determine the term.
         if (!(d > 1e-10 * largest)) return false;
-        inverse[j] = 1.0 / sqrt(d);
+        pivot[j] = d;
+        inverse[j] = 1.0 / d;
         for (int i = j + 1; i < TERMS; ++i) {
             double s = m[i][j];
-            for (int k = 0; k < j; ++k) s -= m[i][k] * m[j][k];
+            for (int k = 0; k < j; ++k) s -= m[i][k] * scaled[k];
             m[i][j] = s * inverse[j];
         }
     }
     for (int i = 0; i < TERMS; ++i) {
         double s = b[i];
         for (int k = 0; k < i; ++k) s -= m[i][k] * x[k];
-        x[i] = s * inverse[i];
+        x[i] = s;
     }
     for (int i = TERMS - 1; i >= 0; --i) {
-        double s = x[i];
+        double s = x[i] * inverse[i];
         for (int k = i + 1; k < TERMS; ++k) s -= m[k][i] * x[k];
-        x[i] = s * inverse[i];
+        x[i] = s;
     }
     return true;
 }
