@@ -1,6 +1,6 @@
-// Tests of the point-cleaning stage and its neighbour search: the k nearest neighbours against brute force
-// (random points, a lattice full of equal distances), the same answer on one thread and two, allocation
-// failure and cancelling.
+// Tests of the point-cleaning stage's neighbour search and local fit: the k nearest neighbours against brute
+// force (random points, a lattice full of equal distances), the same answer on one thread and two, allocation
+// failure and cancelling; the local quadric fit on exact surfaces, lines and single spots, in any frame.
 #include <doctest/doctest.h>
 
 #include <stdint.h>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "delaunay_test_support.h"
+#include "points/local_fit.h"
 #include "points/neighbour_search.h"
 
 using namespace dbrg;
@@ -42,6 +43,27 @@ void check_against_brute_force(const std::vector<double>& xyz, uint32_t k, const
         std::sort(found.begin(), found.end());
         CHECK(std::adjacent_find(found.begin(), found.end()) == found.end());
     }
+}
+
+// A random orthonormal frame: (u, v, n).
+void random_frame(Random& random, Vec3& u, Vec3& v, Vec3& n) {
+    n = normalized(Vec3{random.normal(), random.normal(), random.normal()});
+    u = normalized(cross(n, fabs(n.x) < 0.5 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+    v = cross(n, u);
+}
+
+// Offsets of points on the graph of h + a x^2 + b x y + c y^2 over the plane of u and v (n up), at x, y in
+// pairs symmetric about the origin, so that n is exactly a principal axis of their covariance; the origin
+// itself first.
+std::vector<Vec3> quadric_patch(Random& random, Vec3 u, Vec3 v, Vec3 n, double h, double a, double b, double c) {
+    std::vector<Vec3> offsets{Vec3{0, 0, 0}};
+    for (int pair = 0; pair < 8; ++pair) {
+        const double x = 2 * random.uniform() - 1, y = 2 * random.uniform() - 1;
+        const double z = h + a * x * x + b * x * y + c * y * y;
+        offsets.push_back(x * u + y * v + z * n);
+        offsets.push_back(-x * u + -y * v + z * n);
+    }
+    return offsets;
 }
 
 } // namespace
@@ -113,4 +135,66 @@ TEST_CASE("neighbour search under a failing allocator, and cancelled") {
     uint32_t k = 0;
     CHECK(find_nearest_neighbours(xyz.data(), 300, 8, ProgressSpan(context, DBRG_STAGE_CLEAN), k, neighbours) ==
           DBRG_ERR_CANCELLED);
+}
+
+TEST_CASE("a local quadric fit through points on a quadric: the point's own height, the surface's normal") {
+    Random random(11);
+    for (int trial = 0; trial < 200; ++trial) {
+        CAPTURE(trial);
+        Vec3 u, v, n;
+        random_frame(random, u, v, n);
+        const double a = 0.2 * random.normal(), b = 0.2 * random.normal(), c = 0.2 * random.normal();
+        const std::vector<Vec3> offsets = quadric_patch(random, u, v, n, 0.0, a, b, c);
+        const LocalFit fit = fit_local_quadric(offsets.data(), uint32_t(offsets.size()));
+        CHECK(fabs(length(fit.normal) - 1) < 1e-12);
+        CHECK(fabs(fabs(dot(fit.normal, n)) - 1) < 1e-12);
+        CHECK(fabs(fit.height) < 1e-12);
+        CHECK(fit.rms < 1e-7);  // the square root of rounding: the residual comes from the normal equations
+    }
+}
+
+TEST_CASE("a local quadric fit is the same fit in any frame and at any scale") {
+    Random random(12);
+    for (int trial = 0; trial < 200; ++trial) {
+        CAPTURE(trial);
+        std::vector<Vec3> offsets{Vec3{0, 0, 0}};
+        for (int i = 0; i < 16; ++i) offsets.push_back(Vec3{random.normal(), random.normal(), 0.3 * random.normal()});
+        Vec3 u, v, n;
+        random_frame(random, u, v, n);
+        const double scale = ldexp(1.0, int(random.uniform() * 40) - 20);
+        std::vector<Vec3> moved;
+        for (const Vec3& p : offsets) moved.push_back(scale * (p.x * u + p.y * v + p.z * n));
+        const LocalFit fit = fit_local_quadric(offsets.data(), uint32_t(offsets.size()));
+        const LocalFit moved_fit = fit_local_quadric(moved.data(), uint32_t(moved.size()));
+        const Vec3 normal = fit.normal.x * u + fit.normal.y * v + fit.normal.z * n;
+        CHECK(fabs(fabs(dot(normal, moved_fit.normal)) - 1) < 1e-10);
+        const Vec3 step = fit.height * normal, moved_step = (1 / scale) * moved_fit.height * moved_fit.normal;
+        CHECK(length(step - moved_step) < 1e-10);
+        CHECK(fabs(moved_fit.rms / scale - fit.rms) < 1e-10);
+    }
+}
+
+TEST_CASE("a local quadric fit of points on a line, or on one spot, stays on them") {
+    Random random(13);
+    for (uint32_t count : {2u, 3u, 5u, 17u, 33u}) {
+        for (int trial = 0; trial < 50; ++trial) {
+            CAPTURE(count);
+            CAPTURE(trial);
+            const Vec3 direction = normalized(Vec3{random.normal(), random.normal(), random.normal()});
+            std::vector<Vec3> offsets{Vec3{0, 0, 0}};
+            while (offsets.size() < count) offsets.push_back(random.normal() * direction);
+            const LocalFit fit = fit_local_quadric(offsets.data(), count);
+            CHECK(fabs(length(fit.normal) - 1) < 1e-12);
+            CHECK(fabs(dot(fit.normal, direction)) < 1e-8);
+            CHECK(fabs(fit.height) < 1e-12);
+            CHECK(fit.rms < 1e-7);
+        }
+    }
+    for (uint32_t count : {1u, 5u}) {
+        const std::vector<Vec3> spot(count, Vec3{0, 0, 0});
+        const LocalFit fit = fit_local_quadric(spot.data(), count);
+        CHECK(length(fit.normal) == 1);
+        CHECK(fit.height == 0);
+        CHECK(fit.rms == 0);
+    }
 }

@@ -20,7 +20,7 @@ constexpr uint32_t MAX_NEIGHBOURS = 32;
 // any number of threads and, for points numbered by their coordinates (conditioned points), any input order.
 class NeighbourIndex {
 public:
-    explicit NeighbourIndex(Memory& memory) : order_(memory), boxes_(memory) {}
+    explicit NeighbourIndex(Memory& memory) : order_(memory), leaf_begin_(memory), boxes_(memory) {}
 
     // Builds the tree with up to context.params.threads threads. Reports to `progress`; returns DBRG_OK,
     // DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
@@ -45,6 +45,8 @@ private:
     uint32_t count_ = 0;
     int depth_ = 0;
     Array<uint32_t> order_;
+    // Leaf l (node 2^depth_ + l) holds positions leaf_begin_[l] .. leaf_begin_[l + 1] of order_.
+    Array<uint32_t> leaf_begin_;
     Array<Box> boxes_;
 };
 
