@@ -148,6 +148,8 @@ dbrg_status reconstruct_surface(const dbrg_points* points, Context& context, Sur
 
     Surface surface(context.memory);
     if (conditioned.flat) {
+        // A flat set needs no tetrahedra, but a backend this build lacks is refused whatever the points.
+        DBRG_PROPAGATE(check_backend(context.params.backend, context));
         DBRG_PROPAGATE(grow_flat_surface(conditioned, context, surface));
     } else {
         // The tetrahedralization and the grower's tables live until hole filling is done: their memory is

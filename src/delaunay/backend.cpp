@@ -11,4 +11,10 @@ dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points,
     return out.build(points, count, context, order);
 }
 
+dbrg_status check_backend(dbrg_backend backend, Context& context) {
+    if (backend != DBRG_BACKEND_TETGEN || tetgen_available()) return DBRG_OK;
+    Tetrahedralization none(context.memory);
+    return build_with_tetgen(nullptr, 0, context, none);  // the missing backend's own refusal
+}
+
 } // namespace dbrg

@@ -14,4 +14,8 @@ namespace dbrg {
 dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points, uint32_t count, PointOrder order,
                                      Context& context, Tetrahedralization& out);
 
+// DBRG_OK when this build has `backend`; otherwise the status and message build_tetrahedralization would
+// give. For callers that need no tetrahedra (a flat point set) but must answer a missing backend alike.
+dbrg_status check_backend(dbrg_backend backend, Context& context);
+
 } // namespace dbrg
