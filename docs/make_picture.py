@@ -52,6 +52,26 @@ def shaded(vertices, triangles, light=(0.4, -0.6, 0.7)):
     return np.clip(brightness[:, None] * base, 0, 1)
 
 
+def framed(axes, limits, elevation, title):
+    """Sets a 3-D panel to the points' box at true proportions, seen from `elevation` degrees, without axes."""
+    axes.set_xlim(*limits[0])
+    axes.set_ylim(*limits[1])
+    axes.set_zlim(*limits[2])
+    axes.set_box_aspect([hi - lo for lo, hi in limits])
+    axes.view_init(elev=elevation, azim=-60)
+    axes.set_axis_off()
+    axes.set_title(title)
+
+
+def save(figure, name):
+    """Writes the figure to docs/images/NAME."""
+    figure.tight_layout()
+    output = os.path.join(HERE, "images", name)
+    os.makedirs(os.path.dirname(output), exist_ok=True)
+    figure.savefig(output, bbox_inches="tight")
+    print("wrote", output)
+
+
 def main():
     program = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "..", "build", "src", "cli", "dbrg")
     with tempfile.TemporaryDirectory() as folder:
@@ -70,18 +90,8 @@ def main():
         else:
             axes.add_collection3d(Poly3DCollection(vertices[triangles], facecolors=shaded(vertices, triangles),
                                                    edgecolors=(0, 0, 0, 0.15), linewidths=0.15))
-        axes.set_xlim(*limits[0])
-        axes.set_ylim(*limits[1])
-        axes.set_zlim(*limits[2])
-        axes.set_box_aspect([hi - lo for lo, hi in limits])
-        axes.view_init(elev=38, azim=-60)
-        axes.set_axis_off()
-        axes.set_title(title)
-    figure.tight_layout()
-    output = os.path.join(HERE, "images", "double-torus.png")
-    os.makedirs(os.path.dirname(output), exist_ok=True)
-    figure.savefig(output, bbox_inches="tight")
-    print("wrote", output)
+        framed(axes, limits, 38, title)
+    save(figure, "double-torus.png")
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection  # noqa: E402
 
-from make_picture import HERE, read_off, shaded, topology  # noqa: E402
+from make_picture import HERE, framed, read_off, save, shaded, topology  # noqa: E402
 
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "bench"))
 import scan_simulator as ss  # noqa: E402
@@ -66,17 +66,8 @@ def main():
             borders = boundary_segments(vertices, triangles)
             if len(borders):
                 axes.add_collection3d(Line3DCollection(borders, colors="red", linewidths=0.8))
-        axes.set_xlim(*limits[0])
-        axes.set_ylim(*limits[1])
-        axes.set_zlim(*limits[2])
-        axes.set_box_aspect([hi - lo for lo, hi in limits])
-        axes.view_init(elev=50, azim=-60)
-        axes.set_axis_off()
-        axes.set_title(title)
-    figure.tight_layout()
-    output = os.path.join(HERE, "images", "scan-before-after.png")
-    figure.savefig(output, bbox_inches="tight")
-    print("wrote", output)
+        framed(axes, limits, 50, title)
+    save(figure, "scan-before-after.png")
 
 
 if __name__ == "__main__":

@@ -38,6 +38,18 @@ test::Reconstruction reconstruct_closed(const std::vector<double>& xyz, int genu
     return result;
 }
 
+// Reconstructs `xyz` with the defaults and checks the result is one oriented manifold with `loops` borders.
+test::Reconstruction reconstruct_open(const std::vector<double>& xyz, int loops) {
+    test::Reconstruction result = test::reconstruct(xyz);
+    REQUIRE(result.status == DBRG_OK);
+    const measure::MeshReport report = test::report_of(xyz, result.triangles);
+    test::require_valid_manifold(report);
+    CHECK(report.components == 1);
+    CHECK(report.boundary_loops == uint64_t(loops));
+    CHECK(result.boundary_loops == uint32_t(loops));
+    return result;
+}
+
 } // namespace
 
 TEST_CASE("closed sample shapes come out as closed oriented manifolds of the right genus") {
@@ -66,13 +78,7 @@ TEST_CASE("open sample shapes keep their borders and bridge no opening") {
         const std::string name = facts.name;
         CAPTURE(name);
         const std::vector<double> xyz = samples::sample(shape, 3000);
-        const test::Reconstruction result = test::reconstruct(xyz);
-        REQUIRE(result.status == DBRG_OK);
-        const measure::MeshReport report = test::report_of(xyz, result.triangles);
-        test::require_valid_manifold(report);
-        CHECK(report.components == 1);
-        CHECK(report.boundary_loops == uint64_t(facts.boundary_loops));
-        CHECK(result.boundary_loops == uint32_t(facts.boundary_loops));
+        const test::Reconstruction result = reconstruct_open(xyz, facts.boundary_loops);
         // A triangle across an opening would have an edge far longer than the sample spacing.
         CHECK(test::longest_edge(xyz, result.triangles) < 4 * test::median_edge(xyz, result.triangles));
     }
@@ -101,13 +107,7 @@ TEST_CASE("open shapes sampled unevenly keep their borders, and only those") {
         const samples::ShapeFacts facts = samples::facts(shape);
         const std::string name = facts.name;
         CAPTURE(name);
-        const std::vector<double> xyz = samples::sample_clustered(shape, 4000, 30, 2);
-        const test::Reconstruction result = test::reconstruct(xyz);
-        REQUIRE(result.status == DBRG_OK);
-        const measure::MeshReport report = test::report_of(xyz, result.triangles);
-        test::require_valid_manifold(report);
-        CHECK(report.components == 1);
-        CHECK(report.boundary_loops == uint64_t(facts.boundary_loops));
+        reconstruct_open(samples::sample_clustered(shape, 4000, 30, 2), facts.boundary_loops);
     }
 }
 

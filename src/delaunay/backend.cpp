@@ -12,9 +12,7 @@ dbrg_status build_tetrahedralization(dbrg_backend backend, const double* points,
 }
 
 dbrg_status check_backend(dbrg_backend backend, Context& context) {
-    if (backend != DBRG_BACKEND_TETGEN || tetgen_available()) return DBRG_OK;
-    Tetrahedralization none(context.memory);
-    return build_with_tetgen(nullptr, 0, context, none);  // the missing backend's own refusal
+    return backend == DBRG_BACKEND_TETGEN ? check_tetgen(context) : DBRG_OK;
 }
 
 } // namespace dbrg

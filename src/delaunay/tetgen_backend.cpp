@@ -128,6 +128,8 @@ dbrg_status TetgenImporter::import(const tetgenio& result, const double* points,
 
 bool tetgen_available() { return true; }
 
+dbrg_status check_tetgen(Context&) { return DBRG_OK; }
+
 dbrg_status build_with_tetgen(const double* points, uint32_t count, Context& context, Tetrahedralization& out) {
     out.clear();
     DBRG_PROPAGATE(check_point_count(count, context));

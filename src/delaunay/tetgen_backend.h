@@ -12,6 +12,10 @@ namespace dbrg {
 // True when this build has the TetGen backend (configured with -Dtetgen=enabled).
 bool tetgen_available();
 
+// DBRG_OK when this build has the TetGen backend; otherwise DBRG_ERR_UNSUPPORTED with a message saying how
+// to get it.
+dbrg_status check_tetgen(Context& context);
+
 // As Tetrahedralization::build, with TetGen computing the tetrahedra; the result has the same layout
 // (positively oriented finite tetrahedra, infinite tetrahedra behind the hull faces with the infinite
 // vertex in slot 3, no free slots). On points in general position it holds the same tetrahedra as

@@ -54,14 +54,11 @@ def _candidates(variable="DBRG_LIBRARY", base="dbrg"):
 
 
 def _compatible(found):
-    """The ABI only grows within a major version, so a newer minor library serves an older package;
-    before 1.0 every minor version may change the ABI, so it must match exactly."""
+    """The same major and minor version. The stable ABI only grows within a major version (the C and
+    CMake consumers accept a newer minor library), but this package also calls EXPERIMENTAL functions
+    (the tetrahedralization, the tiles), which may change in any minor version (docs/api.md)."""
     major, minor = found // 10000, found // 100 % 100
-    if major != _capi.DBRG_VERSION_MAJOR:
-        return False
-    if major == 0:
-        return minor == _capi.DBRG_VERSION_MINOR
-    return minor >= _capi.DBRG_VERSION_MINOR
+    return major == _capi.DBRG_VERSION_MAJOR and minor == _capi.DBRG_VERSION_MINOR
 
 
 def _open():

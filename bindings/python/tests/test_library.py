@@ -48,6 +48,17 @@ class LibraryLookup(unittest.TestCase):
         self.assertIn("needs the library version 0.7", run.stderr)
         self.assertIn(dbrg.library_version(), run.stderr)
 
+    def test_a_newer_minor_library_is_refused_too(self):
+        # A package written for the previous minor version calls EXPERIMENTAL functions that may have changed.
+        older = int(dbrg.library_version().split(".")[1]) - 1
+        if older < 0:
+            self.skipTest("no earlier minor version to pretend")
+        code = ("import dbrg._capi as c; c.DBRG_VERSION_MINOR = %d; c.DBRG_VERSION_STRING = '0.%d.0'\n"
+                "import dbrg; dbrg.library_version()" % (older, older))
+        run = run_python(code, DBRG_LIBRARY=dbrg.library_path())
+        self.assertNotEqual(run.returncode, 0)
+        self.assertIn("needs the library version 0.%d" % older, run.stderr)
+
     def test_nothing_found_explains_how_to_point_at_the_library(self):
         env = {"DBRG_LIBRARY": "", "LD_LIBRARY_PATH": ""}
         code = ("import dbrg._library as l\n"
