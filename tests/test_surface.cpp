@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "support/counting_allocator.h"
 #include "surface/surface.h"
 
 using namespace dbrg;
@@ -266,4 +267,23 @@ TEST_CASE("removing pinches spares the vertices marked, and treats the others") 
     CHECK_FALSE(surface.is_pinched(5));
     REQUIRE(removed.size() == 1);
     CHECK(removed[0] == 4);  // the smaller fan of vertex 5
+}
+
+TEST_CASE("faces added past the reservation one at a time cost amortized constant allocator calls") {
+    // Hole filling and the tiles' assembly add faces beyond what growing reserved. Growing the arrays by
+    // exactly one face at a time copied them on every add with an allocator that cannot extend in place:
+    // quadratic time.
+    test::CountingAllocator allocator;
+    Memory memory(allocator.get());
+    Surface surface(memory);
+    const uint32_t columns = 4000;  // a strip: two rows of points, two triangles per column
+    REQUIRE(surface.reset(2 * columns));
+    allocator.fail_at(0);  // counts from here
+    for (uint32_t i = 0; i + 1 < columns; ++i) {
+        REQUIRE(surface.add_face(i, i + 1, columns + i, 0) != NO_FACE);
+        REQUIRE(surface.add_face(i + 1, columns + i + 1, columns + i, 0) != NO_FACE);
+    }
+    CHECK(surface.face_count() == 2 * (columns - 1));
+    CHECK(allocator.requests() < 200);
+    require_valid(surface);
 }

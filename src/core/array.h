@@ -49,6 +49,15 @@ public:
         return true;
     }
 
+    // Room for `extra` more elements. Grows as push_back does, so that adding a few at a time costs
+    // amortized constant time whatever the allocator (an exact reserve would copy the whole array each time).
+    bool reserve_more(size_t extra) {
+        if (extra <= capacity_ - size_) return true;
+        if (extra > SIZE_MAX / sizeof(T) - size_) return false;
+        const size_t grown = grown_capacity();
+        return reserve(size_ + extra > grown ? size_ + extra : grown);
+    }
+
     // New elements are copies of `fill`.
     bool resize(size_t size, const T& fill = T()) {
         if (!reserve(size)) return false;

@@ -103,8 +103,7 @@ uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet) {
 
 uint32_t Surface::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t tet, const FaceCheck& check) {
     const uint32_t f = face_count();
-    if (!corners_.reserve(corners_.size() + 3) || !twins_.reserve(twins_.size() + 3) || !tets_.reserve(tets_.size() + 1) ||
-        !flags_.reserve(flags_.size() + 1)) {
+    if (!corners_.reserve_more(3) || !twins_.reserve_more(3) || !tets_.reserve_more(1) || !flags_.reserve_more(1)) {
         return NO_FACE;
     }
     const uint32_t corners[3] = {a, b, c};
