@@ -13,6 +13,7 @@ import numpy as np
 
 import dbrg
 from dbrg import _capi
+from dbrg.__main__ import program_path
 
 try:
     import distributed
@@ -137,13 +138,14 @@ class Distributed(unittest.TestCase):
             self.assertTrue(os.path.exists(marker))  # a worker did die running a tile
         self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
 
+    @unittest.skipUnless(os.access(program_path(), os.X_OK), "no dbrg program at %s (set DBRG_PROGRAM)" % program_path())
     def test_the_command_line(self):
         with tempfile.TemporaryDirectory() as folder:
             source = os.path.join(folder, "torus.xyz")
             np.savetxt(source, self.points, fmt="%.17g")
             meshes = {}
             for name, command in (
-                    ("program", [os.environ["DBRG_PROGRAM"], "reconstruct", source, "--tiles", str(TILES)]),
+                    ("program", [program_path(), "reconstruct", source, "--tiles", str(TILES)]),
                     ("dask", [sys.executable, "-m", "dbrg", "reconstruct", source, "--tiles", str(TILES),
                               "--distributed", "--workers", "1"])):
                 output = os.path.join(folder, name + ".obj")
