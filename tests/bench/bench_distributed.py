@@ -6,9 +6,10 @@ call, on the same points. Not a test: run it by hand on a release build.
         python3 tests/bench/bench_distributed.py POINTS.ply [--tiles 8] [--repeat 3]
 
 Every run is a fresh child process (and, for Dask, a fresh LocalCluster of one-thread worker processes), the
-configurations alternating within each repeat. Reported per run: wall seconds, and processor seconds of the
+configurations alternating within each repeat. Reported per run: wall seconds, processor seconds of the
 child and of the Dask workers (getrusage, read on each worker before the cluster closes) — processor time
-because the machine may be shared. Every run's faces are compared with the first tiled run's.
+because the machine may be shared — and the peak resident set of the child (which holds the cloud and the
+mesh) and of the largest worker. Every run's faces are compared with the first tiled run's.
 """
 import argparse
 import ctypes
@@ -33,6 +34,10 @@ def cpu_seconds(usage):
 
 def worker_seconds():
     return cpu_seconds(resource.getrusage(resource.RUSAGE_SELF))
+
+
+def peak_rss_mb():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def run_one(configuration, path, tiles):
@@ -65,12 +70,15 @@ def run_one(configuration, path, tiles):
         triangles = dbrg.distributed.reconstruct(points, tiles=tiles, client=client, progress=False).triangles
         wall = time.monotonic() - start
         workers_cpu = sum(client.run(worker_seconds).values()) - before
+        workers_rss = max(client.run(peak_rss_mb).values())
         client.close()
         cluster.close()
         return {"wall": wall, "cpu": cpu_seconds(resource.getrusage(resource.RUSAGE_SELF)) - start_cpu,
-                "workers_cpu": workers_cpu, "faces": hashlib.sha1(np.ascontiguousarray(triangles).tobytes()).hexdigest()}
+                "workers_cpu": workers_cpu, "rss": peak_rss_mb(), "workers_rss": workers_rss,
+                "faces": hashlib.sha1(np.ascontiguousarray(triangles).tobytes()).hexdigest()}
     return {"wall": time.monotonic() - start, "cpu": cpu_seconds(resource.getrusage(resource.RUSAGE_SELF)) - start_cpu,
-            "workers_cpu": workers_cpu, "faces": hashlib.sha1(np.ascontiguousarray(triangles).tobytes()).hexdigest()}
+            "workers_cpu": workers_cpu, "rss": peak_rss_mb(), "workers_rss": 0.0,
+            "faces": hashlib.sha1(np.ascontiguousarray(triangles).tobytes()).hexdigest()}
 
 
 def main():
@@ -91,9 +99,10 @@ def main():
                                      "--one", name], check=True, capture_output=True, text=True).stdout
             result = json.loads(output.strip().splitlines()[-1])
             runs[name].append(result)
-            print("%-7s wall %7.1f s, processor %7.1f s (this process %6.1f, workers %6.1f)  faces %s"
+            print("%-7s wall %7.1f s, processor %7.1f s (this process %6.1f, workers %6.1f), peak RSS %5.0f MB "
+                  "(a worker %5.0f MB)  faces %s"
                   % (name, result["wall"], result["cpu"] + result["workers_cpu"], result["cpu"], result["workers_cpu"],
-                     result["faces"][:10]), flush=True)
+                     result["rss"], result["workers_rss"], result["faces"][:10]), flush=True)
     print("\nmedians over %d runs, %d tiles asked:" % (arguments.repeat, arguments.tiles))
     for name, results in runs.items():
         print("%-7s wall %7.1f s, processor %7.1f s" % (
