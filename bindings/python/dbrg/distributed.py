@@ -18,6 +18,7 @@ this package importable on the workers.
 """
 
 import ctypes
+import warnings
 
 import numpy as np
 
@@ -196,9 +197,13 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
         return _reconstruct_one(points, **options)
     client, opened = _open_client(client, scheduler, n_workers, memory_limit)
     try:
-        faces = _tiles(client, array, cut, options, progress)
-        for half in (0, 1):
-            faces = _stitch_half(client, array, faces, cut, cut.walls[half::2], options, progress)
+        with warnings.catch_warnings():
+            # Dask advises scattering large task arguments; here they are sent in the tasks on purpose, so
+            # that a task outlives the worker it ran on (module docstring).
+            warnings.filterwarnings("ignore", message="Large object of size", category=UserWarning)
+            faces = _tiles(client, array, cut, options, progress)
+            for half in (0, 1):
+                faces = _stitch_half(client, array, faces, cut, cut.walls[half::2], options, progress)
     finally:
         for thing in opened:
             thing.close()
