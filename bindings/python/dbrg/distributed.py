@@ -191,6 +191,12 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
         raise ImportError("dbrg.distributed needs dask and distributed (Debian: python3-dask python3-distributed; "
                           "pip: distributed): %s" % error) from None
     lib = library()
+    # The tasks' parameters, checked here so that a bad one fails before any cluster work.
+    params = _params(lib, threads=1, **options)
+    message = ctypes.create_string_buffer(512)
+    status = lib.dbrg_params_validate(ctypes.byref(params), message, len(message))
+    if status != _OK:
+        raise _error(lib, status, message.value)
     array = np.ascontiguousarray(np.asarray(points), dtype=np.float64)
     cut = plan(array, tiles)
     if not cut.walls:

@@ -101,6 +101,15 @@ class Distributed(unittest.TestCase):
         self.assertEqual(mesh.stats["tiles"], TILES)
         self.assertEqual(mesh.stats["seam_faces_dropped"], self.reference.stats["seam_faces_dropped"])
 
+    def test_a_bad_parameter_fails_before_any_task(self):
+        with self.assertRaises(dbrg.InvalidParameterError) as raised:
+            dbrg_distributed.reconstruct(self.points, tiles=TILES, client=self.client, progress=False,
+                                         boundary_factor=0.5)
+        self.assertIn("boundary_factor", raised.exception.message)
+        self.assertEqual(self.client.who_has(), {})  # nothing was submitted
+        with self.assertRaises(TypeError):
+            dbrg_distributed.reconstruct(self.points, client=self.client, threads=2)
+
     def test_one_worker_gives_what_two_give(self):
         cluster, client = local_cluster(1)
         try:
