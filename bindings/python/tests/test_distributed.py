@@ -89,7 +89,7 @@ class KillOnFirstTile(WorkerPlugin):
             os._exit(1)
 
 
-@unittest.skipIf(distributed is None, "skipped: " + (MISSING if distributed is None else ""))
+@unittest.skipIf(distributed is None, MISSING if distributed is None else "")
 class Distributed(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
