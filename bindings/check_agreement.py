@@ -346,7 +346,7 @@ DRIFTS = [
     ("python", '    "dbrg_mesh_stats": (c_enum, [mesh_p, POINTER(dbrg_stats)]),', '    "dbrg_mesh_stats": (c_enum, [mesh_p]),',
      "a parameter missing from a Python function"),
     ("python", '        "DBRG_STAGE_OUTPUT": 5,', '        "DBRG_STAGE_OUTPUT": 6,', "a stage value changed in Python"),
-    ("python", "DBRG_VERSION_MINOR = 4", "DBRG_VERSION_MINOR = 5", "the version changed in Python"),
+    ("python", "DBRG_VERSION_MINOR = 5", "DBRG_VERSION_MINOR = 6", "the version changed in Python"),
     ("header", "    uint32_t pinch_faces_removed;", "    uint32_t pinch_faces_removed;\n    uint32_t new_counter;",
      "a field added to the header's dbrg_stats"),
     ("header", "DBRG_API uint32_t dbrg_mesh_point_count(const dbrg_mesh* mesh);",

@@ -24,10 +24,10 @@
 #include <stdint.h>
 
 #define DBRG_VERSION_MAJOR 0
-#define DBRG_VERSION_MINOR 4
+#define DBRG_VERSION_MINOR 5
 #define DBRG_VERSION_PATCH 0
 #define DBRG_VERSION_NUMBER (DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH)
-#define DBRG_VERSION_STRING "0.4.0"
+#define DBRG_VERSION_STRING "0.5.0"
 
 #if defined(_WIN32) && defined(DBRG_SHARED_BUILD)
 #define DBRG_API __declspec(dllexport)

@@ -585,5 +585,5 @@ def validate_points(points):
 
 
 def library_version():
-    """The version string of the loaded shared library ("0.4.0")."""
+    """The version string of the loaded shared library ("0.5.0")."""
     return library().dbrg_version_string().decode()

@@ -10,9 +10,9 @@ from ctypes import POINTER, c_char_p, c_double, c_int, c_size_t, c_uint32, c_uin
 
 # The header these declarations were written against (DBRG_VERSION_*).
 DBRG_VERSION_MAJOR = 0
-DBRG_VERSION_MINOR = 4
+DBRG_VERSION_MINOR = 5
 DBRG_VERSION_PATCH = 0
-DBRG_VERSION_STRING = "0.4.0"
+DBRG_VERSION_STRING = "0.5.0"
 DBRG_VERSION_NUMBER = DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH
 
 DBRG_MAX_POINTS = 0x7FFFFFFF

@@ -846,7 +846,7 @@ pub fn library_version() -> (u32, u32, u32) {
     (number / 10000, number / 100 % 100, number % 100)
 }
 
-/// The version string of the library linked at run time ("0.4.0").
+/// The version string of the library linked at run time ("0.5.0").
 pub fn library_version_string() -> &'static str {
     // SAFETY: a static NUL-terminated string.
     unsafe { CStr::from_ptr(sys::dbrg_version_string()) }.to_str().unwrap_or("")

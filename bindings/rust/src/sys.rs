@@ -8,10 +8,10 @@
 use std::os::raw::{c_char, c_int, c_uint, c_void};
 
 pub const DBRG_VERSION_MAJOR: u32 = 0;
-pub const DBRG_VERSION_MINOR: u32 = 4;
+pub const DBRG_VERSION_MINOR: u32 = 5;
 pub const DBRG_VERSION_PATCH: u32 = 0;
 pub const DBRG_VERSION_NUMBER: u32 = DBRG_VERSION_MAJOR * 10000 + DBRG_VERSION_MINOR * 100 + DBRG_VERSION_PATCH;
-pub const DBRG_VERSION_STRING: &str = "0.4.0";
+pub const DBRG_VERSION_STRING: &str = "0.5.0";
 
 pub const DBRG_MAX_POINTS: usize = 0x7fff_ffff;
 pub const DBRG_NO_NEIGHBOR: u32 = u32::MAX;
