@@ -9,7 +9,7 @@
 namespace dbrg {
 
 Surface::Surface(Memory& memory)
-    : corners_(memory), twins_(memory), tets_(memory), flags_(memory), vertex_halfedge_(memory), pinched_(memory), extra_fans_(memory) {}
+    : corners_(memory), twins_(memory), tets_(memory), flags_(memory), vertex_halfedge_(memory), extra_fans_(memory), first_extra_(memory) {}
 
 bool Surface::reset(uint32_t vertex_count) {
     corners_.clear();
@@ -21,8 +21,8 @@ bool Surface::reset(uint32_t vertex_count) {
     used_vertices_ = 0;
     removed_faces_ = 0;
     vertex_halfedge_.clear();
-    pinched_.clear();
-    return vertex_halfedge_.resize(vertex_count, NO_HALFEDGE) && pinched_.resize(vertex_count, 0);
+    first_extra_.clear();
+    return vertex_halfedge_.resize(vertex_count, NO_HALFEDGE) && first_extra_.resize(vertex_count, NO_EXTRA_FAN);
 }
 
 uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
@@ -203,8 +203,9 @@ bool Surface::add_fan(uint32_t v, uint32_t h) {
         ++used_vertices_;
         return true;
     }
-    if (!extra_fans_.push_back(ExtraFan{v, h})) return false;
-    recount_pinch(v);
+    if (!extra_fans_.push_back(ExtraFan{v, h, NO_EXTRA_FAN})) return false;
+    pinched_vertices_ += is_pinched(v) ? 0 : 1;
+    link_extra_fan(uint32_t(extra_fans_.size() - 1));
     return true;
 }
 
@@ -213,38 +214,50 @@ void Surface::replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h) {
         vertex_halfedge_[v] = new_h;
         return;
     }
-    for (ExtraFan& fan : extra_fans_) {
-        if (fan.vertex == v && fan.halfedge == old_h) fan.halfedge = new_h;
+    for (uint32_t p = first_extra_[v]; p != NO_EXTRA_FAN; p = extra_fans_[p].next) {
+        if (extra_fans_[p].halfedge == old_h) extra_fans_[p].halfedge = new_h;
     }
 }
 
 void Surface::drop_fan(uint32_t v, uint32_t h) {
-    size_t found = extra_fans_.size();
+    uint32_t found = NO_EXTRA_FAN;
     if (vertex_halfedge_[v] == h) {
         // Promote another fan, if any, to be the vertex's first.
-        for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
-            if (extra_fans_[i].vertex == v) found = i;
-        }
-        vertex_halfedge_[v] = found < extra_fans_.size() ? extra_fans_[found].halfedge : NO_HALFEDGE;
+        found = first_extra_[v];
+        vertex_halfedge_[v] = found != NO_EXTRA_FAN ? extra_fans_[found].halfedge : NO_HALFEDGE;
         used_vertices_ -= vertex_halfedge_[v] == NO_HALFEDGE ? 1 : 0;
     } else {
-        for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
-            if (extra_fans_[i].vertex == v && extra_fans_[i].halfedge == h) found = i;
+        for (uint32_t p = first_extra_[v]; p != NO_EXTRA_FAN && found == NO_EXTRA_FAN; p = extra_fans_[p].next) {
+            if (extra_fans_[p].halfedge == h) found = p;
         }
     }
-    if (found == extra_fans_.size()) return;
-    extra_fans_[found] = extra_fans_.back();
-    extra_fans_.pop_back();
-    recount_pinch(v);
+    if (found == NO_EXTRA_FAN) return;
+    remove_extra_fan(found);
+    pinched_vertices_ -= is_pinched(v) ? 0 : 1;
 }
 
-void Surface::recount_pinch(uint32_t v) {
-    bool has_extra = false;
-    for (const ExtraFan& fan : extra_fans_) has_extra = has_extra || fan.vertex == v;
-    if (has_extra != (pinched_[v] != 0)) {
-        pinched_vertices_ += has_extra ? 1 : uint32_t(-1);
-        pinched_[v] = has_extra ? 1 : 0;
+void Surface::link_extra_fan(uint32_t position) {
+    uint32_t* slot = &first_extra_[extra_fans_[position].vertex];
+    while (*slot != NO_EXTRA_FAN && *slot < position) slot = &extra_fans_[*slot].next;
+    extra_fans_[position].next = *slot;
+    *slot = position;
+}
+
+void Surface::unlink_extra_fan(uint32_t position) {
+    uint32_t* slot = &first_extra_[extra_fans_[position].vertex];
+    while (*slot != position) slot = &extra_fans_[*slot].next;
+    *slot = extra_fans_[position].next;
+}
+
+void Surface::remove_extra_fan(uint32_t position) {
+    unlink_extra_fan(position);
+    const uint32_t last = uint32_t(extra_fans_.size() - 1);
+    if (position != last) {
+        unlink_extra_fan(last);
+        extra_fans_[position] = extra_fans_[last];
+        link_extra_fan(position);
     }
+    extra_fans_.pop_back();
 }
 
 bool Surface::validate(char* message, size_t capacity) const {
