@@ -34,13 +34,16 @@ uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
     return found;
 }
 
-void Surface::find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const {
-    to_y = to_z = NO_HALFEDGE;
+void Surface::find_edges(uint32_t x, uint32_t y, uint32_t z, uint32_t& xy, uint32_t& yx, uint32_t& xz,
+                         uint32_t& zx) const {
+    xy = yx = xz = zx = NO_HALFEDGE;
     walk_vertex(x, [&](uint32_t h) {
-        const uint32_t w = target(h);
-        if (w == y) to_y = h;
-        if (w == z) to_z = h;
-        return to_y == NO_HALFEDGE || to_z == NO_HALFEDGE;
+        const uint32_t w = target(h), into = prev(h), from = origin(into);
+        if (w == y) xy = h;
+        if (w == z) xz = h;
+        if (from == y) yx = into;
+        if (from == z) zx = into;
+        return xy == NO_HALFEDGE || yx == NO_HALFEDGE || xz == NO_HALFEDGE || zx == NO_HALFEDGE;
     });
 }
 
@@ -53,12 +56,12 @@ uint32_t Surface::fan_exit(uint32_t incoming_boundary) const {
 FaceCheck Surface::check_face(uint32_t a, uint32_t b, uint32_t c) const {
     FaceCheck check;
     const uint32_t corners[3] = {a, b, c};
-    // One turn around each corner finds its half-edges to both others: to the next corner (edge i in the
-    // face's direction) and to the previous one (the reverse of edge i + 2).
-    uint32_t to_next[3], to_previous[3];
-    for (uint32_t i = 0; i < 3; ++i) {
-        find_halfedges(corners[i], corners[(i + 1) % 3], corners[(i + 2) % 3], to_next[i], to_previous[i]);
-    }
+    // The half-edges from each corner to the next (edge i in the face's direction) and to the previous one
+    // (the reverse of edge i + 2): a turn around a finds those between a and the others, a turn around c
+    // those between c and b (none when c has no face yet, as when growing reaches a new point).
+    uint32_t to_next[3], to_previous[3], unused[2];
+    find_edges(a, b, c, to_next[0], to_previous[1], to_previous[0], to_next[2]);
+    find_edges(c, b, a, to_previous[2], to_next[1], unused[0], unused[1]);
     for (uint32_t i = 0; i < 3; ++i) {
         const uint32_t same = to_next[i];
         if (same != NO_HALFEDGE) {

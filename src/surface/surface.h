@@ -180,8 +180,9 @@ private:
     };
     static constexpr uint32_t NO_EXTRA_FAN = UINT32_MAX;
 
-    // The half-edges from x to y and from x to z (NO_HALFEDGE where there is none), in one turn around x.
-    void find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const;
+    // The half-edges between x and y and between x and z, both ways (NO_HALFEDGE where there is none), in one
+    // turn around x: each face at x has one half-edge out of x and the one before it into x.
+    void find_edges(uint32_t x, uint32_t y, uint32_t z, uint32_t& xy, uint32_t& yx, uint32_t& xz, uint32_t& zx) const;
     bool add_fan(uint32_t v, uint32_t h);
     void replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h);
     void drop_fan(uint32_t v, uint32_t h);
