@@ -287,3 +287,49 @@ TEST_CASE("faces added past the reservation one at a time cost amortized constan
     CHECK(allocator.requests() < 200);
     require_valid(surface);
 }
+
+TEST_CASE("pinched vertices keep every fan while fans of many vertices come and go in any order") {
+    // Four hubs, each with a ring of eight faces added and then removed in a shuffled order, the hubs taking
+    // turns: each hub gains and loses up to four fans at a time, and the extra fans of all hubs are recorded
+    // side by side, so removing one moves another hub's.
+    const uint32_t hubs = 4, ring = 8;
+    Memory memory(nullptr);
+    Surface surface(memory);
+    REQUIRE(surface.reset(hubs * (ring + 1)));
+    const auto face = [&](uint32_t hub, uint32_t k, uint32_t corner[3]) {
+        const uint32_t base = hub * (ring + 1);
+        corner[0] = base;
+        corner[1] = base + 1 + k;
+        corner[2] = base + 1 + (k + 1) % ring;
+    };
+    uint64_t state = 12345;
+    const auto random_below = [&](uint32_t n) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return uint32_t((state >> 33) % n);
+    };
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<std::pair<uint32_t, uint32_t>> order;  // (hub, ring position), hubs interleaved
+        for (uint32_t k = 0; k < ring; ++k) {
+            for (uint32_t hub = 0; hub < hubs; ++hub) order.push_back({hub, k});
+        }
+        for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[random_below(uint32_t(i))]);
+        std::vector<uint32_t> faces;
+        uint32_t most_pinched = 0;
+        for (const auto& [hub, k] : order) {
+            uint32_t corner[3];
+            face(hub, k, corner);
+            faces.push_back(surface.add_face(corner[0], corner[1], corner[2], 0));
+            require_valid(surface);
+            most_pinched = std::max(most_pinched, surface.pinched_vertex_count());
+        }
+        CHECK(most_pinched > 1);
+        CHECK(surface.pinched_vertex_count() == 0);  // every ring closed
+        for (size_t i = faces.size(); i > 1; --i) std::swap(faces[i - 1], faces[random_below(uint32_t(i))]);
+        for (uint32_t f : faces) {
+            REQUIRE(surface.remove_face(f));
+            require_valid(surface);
+        }
+        CHECK(surface.used_vertex_count() == 0);
+        REQUIRE(surface.reset(hubs * (ring + 1)));
+    }
+}

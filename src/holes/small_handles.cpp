@@ -499,10 +499,12 @@ dbrg_status HoleFiller::cut_handle(const uint32_t* cycle, size_t length, const P
     }
     filling_cut_ = false;
     DBRG_PROPAGATE(status);
+    // A loop left open fails the test below whatever the topology: spare the pass over the whole surface.
+    if (!all_filled) return undo(journal, 0);
 
     SurfaceTopology after(memory);
     DBRG_PROPAGATE(measure_topology(surface_, progress, after));
-    if (all_filled && after.components == before.components && after.boundary_halfedges == before.boundary_halfedges &&
+    if (after.components == before.components && after.boundary_halfedges == before.boundary_halfedges &&
         after.total_genus < before.total_genus) {
         removed = true;
         handle_triangles_added_ += journal.added_count();

@@ -9,7 +9,7 @@
 namespace dbrg {
 
 Surface::Surface(Memory& memory)
-    : corners_(memory), twins_(memory), tets_(memory), flags_(memory), vertex_halfedge_(memory), pinched_(memory), extra_fans_(memory) {}
+    : corners_(memory), twins_(memory), tets_(memory), flags_(memory), vertex_halfedge_(memory), extra_fans_(memory), first_extra_(memory) {}
 
 bool Surface::reset(uint32_t vertex_count) {
     corners_.clear();
@@ -21,8 +21,8 @@ bool Surface::reset(uint32_t vertex_count) {
     used_vertices_ = 0;
     removed_faces_ = 0;
     vertex_halfedge_.clear();
-    pinched_.clear();
-    return vertex_halfedge_.resize(vertex_count, NO_HALFEDGE) && pinched_.resize(vertex_count, 0);
+    first_extra_.clear();
+    return vertex_halfedge_.resize(vertex_count, NO_HALFEDGE) && first_extra_.resize(vertex_count, NO_EXTRA_FAN);
 }
 
 uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
@@ -34,13 +34,16 @@ uint32_t Surface::find_halfedge(uint32_t a, uint32_t b) const {
     return found;
 }
 
-void Surface::find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const {
-    to_y = to_z = NO_HALFEDGE;
+void Surface::find_edges(uint32_t x, uint32_t y, uint32_t z, uint32_t& xy, uint32_t& yx, uint32_t& xz,
+                         uint32_t& zx) const {
+    xy = yx = xz = zx = NO_HALFEDGE;
     walk_vertex(x, [&](uint32_t h) {
-        const uint32_t w = target(h);
-        if (w == y) to_y = h;
-        if (w == z) to_z = h;
-        return to_y == NO_HALFEDGE || to_z == NO_HALFEDGE;
+        const uint32_t w = target(h), into = prev(h), from = origin(into);
+        if (w == y) xy = h;
+        if (w == z) xz = h;
+        if (from == y) yx = into;
+        if (from == z) zx = into;
+        return xy == NO_HALFEDGE || yx == NO_HALFEDGE || xz == NO_HALFEDGE || zx == NO_HALFEDGE;
     });
 }
 
@@ -53,12 +56,12 @@ uint32_t Surface::fan_exit(uint32_t incoming_boundary) const {
 FaceCheck Surface::check_face(uint32_t a, uint32_t b, uint32_t c) const {
     FaceCheck check;
     const uint32_t corners[3] = {a, b, c};
-    // One turn around each corner finds its half-edges to both others: to the next corner (edge i in the
-    // face's direction) and to the previous one (the reverse of edge i + 2).
-    uint32_t to_next[3], to_previous[3];
-    for (uint32_t i = 0; i < 3; ++i) {
-        find_halfedges(corners[i], corners[(i + 1) % 3], corners[(i + 2) % 3], to_next[i], to_previous[i]);
-    }
+    // The half-edges from each corner to the next (edge i in the face's direction) and to the previous one
+    // (the reverse of edge i + 2): a turn around a finds those between a and the others, a turn around c
+    // those between c and b (none when c has no face yet, as when growing reaches a new point).
+    uint32_t to_next[3], to_previous[3], unused[2];
+    find_edges(a, b, c, to_next[0], to_previous[1], to_previous[0], to_next[2]);
+    find_edges(c, b, a, to_previous[2], to_next[1], unused[0], unused[1]);
     for (uint32_t i = 0; i < 3; ++i) {
         const uint32_t same = to_next[i];
         if (same != NO_HALFEDGE) {
@@ -202,8 +205,9 @@ bool Surface::add_fan(uint32_t v, uint32_t h) {
         ++used_vertices_;
         return true;
     }
-    if (!extra_fans_.push_back(ExtraFan{v, h})) return false;
-    recount_pinch(v);
+    if (!extra_fans_.push_back(ExtraFan{v, h, NO_EXTRA_FAN})) return false;
+    pinched_vertices_ += is_pinched(v) ? 0 : 1;
+    link_extra_fan(uint32_t(extra_fans_.size() - 1));
     return true;
 }
 
@@ -212,38 +216,50 @@ void Surface::replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h) {
         vertex_halfedge_[v] = new_h;
         return;
     }
-    for (ExtraFan& fan : extra_fans_) {
-        if (fan.vertex == v && fan.halfedge == old_h) fan.halfedge = new_h;
+    for (uint32_t p = first_extra_[v]; p != NO_EXTRA_FAN; p = extra_fans_[p].next) {
+        if (extra_fans_[p].halfedge == old_h) extra_fans_[p].halfedge = new_h;
     }
 }
 
 void Surface::drop_fan(uint32_t v, uint32_t h) {
-    size_t found = extra_fans_.size();
+    uint32_t found = NO_EXTRA_FAN;
     if (vertex_halfedge_[v] == h) {
         // Promote another fan, if any, to be the vertex's first.
-        for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
-            if (extra_fans_[i].vertex == v) found = i;
-        }
-        vertex_halfedge_[v] = found < extra_fans_.size() ? extra_fans_[found].halfedge : NO_HALFEDGE;
+        found = first_extra_[v];
+        vertex_halfedge_[v] = found != NO_EXTRA_FAN ? extra_fans_[found].halfedge : NO_HALFEDGE;
         used_vertices_ -= vertex_halfedge_[v] == NO_HALFEDGE ? 1 : 0;
     } else {
-        for (size_t i = 0; i < extra_fans_.size() && found == extra_fans_.size(); ++i) {
-            if (extra_fans_[i].vertex == v && extra_fans_[i].halfedge == h) found = i;
+        for (uint32_t p = first_extra_[v]; p != NO_EXTRA_FAN && found == NO_EXTRA_FAN; p = extra_fans_[p].next) {
+            if (extra_fans_[p].halfedge == h) found = p;
         }
     }
-    if (found == extra_fans_.size()) return;
-    extra_fans_[found] = extra_fans_.back();
-    extra_fans_.pop_back();
-    recount_pinch(v);
+    if (found == NO_EXTRA_FAN) return;
+    remove_extra_fan(found);
+    pinched_vertices_ -= is_pinched(v) ? 0 : 1;
 }
 
-void Surface::recount_pinch(uint32_t v) {
-    bool has_extra = false;
-    for (const ExtraFan& fan : extra_fans_) has_extra = has_extra || fan.vertex == v;
-    if (has_extra != (pinched_[v] != 0)) {
-        pinched_vertices_ += has_extra ? 1 : uint32_t(-1);
-        pinched_[v] = has_extra ? 1 : 0;
+void Surface::link_extra_fan(uint32_t position) {
+    uint32_t* slot = &first_extra_[extra_fans_[position].vertex];
+    while (*slot != NO_EXTRA_FAN && *slot < position) slot = &extra_fans_[*slot].next;
+    extra_fans_[position].next = *slot;
+    *slot = position;
+}
+
+void Surface::unlink_extra_fan(uint32_t position) {
+    uint32_t* slot = &first_extra_[extra_fans_[position].vertex];
+    while (*slot != position) slot = &extra_fans_[*slot].next;
+    *slot = extra_fans_[position].next;
+}
+
+void Surface::remove_extra_fan(uint32_t position) {
+    unlink_extra_fan(position);
+    const uint32_t last = uint32_t(extra_fans_.size() - 1);
+    if (position != last) {
+        unlink_extra_fan(last);
+        extra_fans_[position] = extra_fans_[last];
+        link_extra_fan(position);
     }
+    extra_fans_.pop_back();
 }
 
 bool Surface::validate(char* message, size_t capacity) const {

@@ -84,7 +84,7 @@ public:
     bool is_used(uint32_t v) const { return vertex_halfedge_[v] != NO_HALFEDGE; }
     // True when v has faces and an open fan.
     bool is_boundary_vertex(uint32_t v) const { return is_used(v) && is_boundary(vertex_halfedge_[v]); }
-    bool is_pinched(uint32_t v) const { return pinched_[v] != 0; }
+    bool is_pinched(uint32_t v) const { return first_extra_[v] != NO_EXTRA_FAN; }
     uint32_t pinched_vertex_count() const { return pinched_vertices_; }
     // Vertices with at least one face now.
     uint32_t used_vertex_count() const { return used_vertices_; }
@@ -176,22 +176,31 @@ private:
     struct ExtraFan {
         uint32_t vertex;
         uint32_t halfedge;  // the fan's outgoing boundary half-edge
+        uint32_t next;      // the vertex's next entry in extra_fans_, in array order, or NO_EXTRA_FAN
     };
+    static constexpr uint32_t NO_EXTRA_FAN = UINT32_MAX;
 
-    // The half-edges from x to y and from x to z (NO_HALFEDGE where there is none), in one turn around x.
-    void find_halfedges(uint32_t x, uint32_t y, uint32_t z, uint32_t& to_y, uint32_t& to_z) const;
+    // The half-edges between x and y and between x and z, both ways (NO_HALFEDGE where there is none), in one
+    // turn around x: each face at x has one half-edge out of x and the one before it into x.
+    void find_edges(uint32_t x, uint32_t y, uint32_t z, uint32_t& xy, uint32_t& yx, uint32_t& xz, uint32_t& zx) const;
     bool add_fan(uint32_t v, uint32_t h);
     void replace_fan(uint32_t v, uint32_t old_h, uint32_t new_h);
     void drop_fan(uint32_t v, uint32_t h);
-    void recount_pinch(uint32_t v);
+    // Entry `position` of extra_fans_ into or out of its vertex's chain (kept in array order).
+    void link_extra_fan(uint32_t position);
+    void unlink_extra_fan(uint32_t position);
+    // Removes entry `position` of extra_fans_, the last entry taking its place.
+    void remove_extra_fan(uint32_t position);
 
     Array<uint32_t> corners_;          // 3 per face
     Array<uint32_t> twins_;            // 3 per face
     Array<uint32_t> tets_;             // 1 per face
     Array<uint8_t> flags_;             // 1 per face: FACE_* bits
     Array<uint32_t> vertex_halfedge_;  // 1 per vertex
-    Array<uint8_t> pinched_;           // 1 per vertex: has entries in extra_fans_
-    Array<ExtraFan> extra_fans_;       // second and later fans of pinched vertices
+    // Second and later fans of pinched vertices, chained per vertex from first_extra_ so that a vertex's
+    // entries are found without a pass over all of them (thousands while fronts meet on a large sample).
+    Array<ExtraFan> extra_fans_;
+    Array<uint32_t> first_extra_;      // 1 per vertex: its first entry in extra_fans_, or NO_EXTRA_FAN
     uint32_t pinched_vertices_ = 0;
     uint32_t used_vertices_ = 0;
     uint32_t removed_faces_ = 0;
@@ -289,10 +298,7 @@ template <class Visit>
 void Surface::for_each_fan(uint32_t v, Visit&& visit) const {
     if (vertex_halfedge_[v] == NO_HALFEDGE) return;
     visit(vertex_halfedge_[v]);
-    if (!pinched_[v]) return;
-    for (const ExtraFan& fan : extra_fans_) {
-        if (fan.vertex == v) visit(fan.halfedge);
-    }
+    for (uint32_t p = first_extra_[v]; p != NO_EXTRA_FAN; p = extra_fans_[p].next) visit(extra_fans_[p].halfedge);
 }
 
 } // namespace dbrg

@@ -7,6 +7,7 @@ it. Not a test: run it by hand on a release build.
     python3 tests/bench/bench_reconstruct.py --holes     # boundaries before and after hole filling
     python3 tests/bench/bench_reconstruct.py --cgal      # against CGAL's advancing front, same inputs
     python3 tests/bench/bench_reconstruct.py --threads 2 # one thread against two on the large samples
+    python3 tests/bench/bench_reconstruct.py --cgal --shapes  # random points on a sphere, cylinder, torus
 
 Inputs: the vertices of every mesh in the data folder (face recall measured against the mesh itself),
 two of them refined by Loop subdivision (subdivide.py: the spot to about 190k points and the rocker arm to
@@ -14,7 +15,9 @@ about 160k; with --large also to 750k and 640k), their recall measured against t
 generated samples of closed and open shapes (100k points; 1M and 2M too with --large). With --holes: the
 data meshes and generated poor data (graded density, sharp edges, a thin plate), each reconstructed
 with and without hole filling. With --holes and --cgal also the bunny's vertices under Gaussian noise of
-0.3 and 0.6 mean side lengths (a scanner's noise), measured against the clean mesh.
+0.3 and 0.6 mean side lengths (a scanner's noise), measured against the clean mesh. With --shapes only
+uniformly random (not evenly spaced) points on a unit sphere (20k and 200k), an open cylinder of radius 1 and
+height 6 (200k) and a torus of radii 1 and 0.35 (200k): nearly degenerate for the predicates (issue #13).
 """
 import argparse
 import json
@@ -121,6 +124,37 @@ def add_noisy(inputs, data, workdir, model="stanford-bunny.obj", sigmas=(0.3, 0.
         inputs.append((f"{model} + noise {sigma} side", path, source))
 
 
+def add_random_shapes(inputs, workdir):
+    """Uniformly random points (a fixed seed) on a sphere, an open cylinder and a torus, as point files."""
+    rng = random.Random(13)
+
+    def sphere():
+        while True:
+            x, y, z = (rng.gauss(0, 1) for _ in range(3))
+            length = math.sqrt(x * x + y * y + z * z)
+            if length > 1e-3:
+                return x / length, y / length, z / length
+
+    def cylinder():
+        angle = rng.uniform(0, 2 * math.pi)
+        return math.cos(angle), math.sin(angle), rng.uniform(0, 6)
+
+    def torus(radius=1.0, tube=0.35):
+        while True:  # uniform by area: the tube angle with density radius + tube cos(v)
+            u, v = rng.uniform(0, 2 * math.pi), rng.uniform(0, 2 * math.pi)
+            if rng.uniform(0, radius + tube) <= radius + tube * math.cos(v):
+                ring = radius + tube * math.cos(v)
+                return ring * math.cos(u), ring * math.sin(u), tube * math.sin(v)
+
+    for name, point, count in (("sphere", sphere, 20_000), ("sphere", sphere, 200_000),
+                               ("open cylinder", cylinder, 200_000), ("torus", torus, 200_000)):
+        path = os.path.join(workdir, f"random-{name.replace(' ', '_')}-{count}.xyz")
+        with open(path, "w") as f:
+            for _ in range(count):
+                f.write(" ".join(repr(c) for c in point()) + "\n")
+        inputs.append((f"random {name} {count // 1000}k", path, None))
+
+
 def compare_threads(dbrg, threads, inputs, workdir, repeats=3):
     """One thread against `threads`, the best of `repeats` runs each (read and write included), and whether
     the two meshes are byte-identical."""
@@ -195,11 +229,21 @@ def main():
     parser.add_argument("--cgal", action="store_true",
                         help="compare with CGAL's advancing front (build tests/bench/cgal-advancing-front first; "
                              "needs libcgal-dev)")
+    parser.add_argument("--shapes", action="store_true",
+                        help="only random points on a sphere, an open cylinder and a torus (with --cgal: against it)")
     parser.add_argument("--threads", type=int, metavar="N",
                         help="one thread against N on the inputs of 100k points or more (and the same mesh?)")
     args = parser.parse_args()
 
     inputs = []
+    if args.shapes:
+        with tempfile.TemporaryDirectory() as workdir:
+            add_random_shapes(inputs, workdir)
+            if args.cgal:
+                compare_with_cgal(args.dbrg, cgal_program(args.dbrg), inputs, workdir)
+            else:
+                table(args.dbrg, inputs, workdir)
+        return
     if os.path.isdir(args.data):
         for name in sorted(os.listdir(args.data)):
             if name.endswith(MESH_SUFFIXES):
@@ -228,24 +272,34 @@ def main():
             compare_threads(args.dbrg, args.threads, large, workdir)
         return
     if args.cgal:
-        cgal = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(args.dbrg)))),
-                            "tests", "bench", "cgal-advancing-front")
-        if not os.path.exists(cgal):
-            sys.exit(f"no {cgal}: install libcgal-dev, reconfigure, and build it: "
-                     f"ninja -C build tests/bench/cgal-advancing-front")
+        cgal = cgal_program(args.dbrg)
         with tempfile.TemporaryDirectory() as workdir:
             add_subdivided(inputs, args.data, subdivided, workdir)
             add_noisy(inputs, args.data, workdir)
             compare_with_cgal(args.dbrg, cgal, inputs, workdir)
         return
+    with tempfile.TemporaryDirectory() as workdir:
+        add_subdivided(inputs, args.data, subdivided, workdir)
+        table(args.dbrg, inputs, workdir)
+
+
+def cgal_program(dbrg):
+    """The CGAL peer built beside `dbrg` (build/src/cli/dbrg -> build/tests/bench/cgal-advancing-front)."""
+    cgal = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(dbrg)))),
+                        "tests", "bench", "cgal-advancing-front")
+    if not os.path.exists(cgal):
+        sys.exit(f"no {cgal}: install libcgal-dev, reconfigure, and build it: "
+                 f"ninja -C build tests/bench/cgal-advancing-front")
+    return cgal
+
+
+def table(dbrg, inputs, workdir):
     print("| input | n | v | t | DT s | RG s | HF s | total s | Mpts/s | peak B/pt | boundary edges "
           "| loops | non-manifold edges | non-manifold vertices | oriented | genus | face recall |")
     print("|---|" + "---:|" * 16)
-    with tempfile.TemporaryDirectory() as workdir:
-        add_subdivided(inputs, args.data, subdivided, workdir)
-        for name, source, reference in inputs:
-            stats, report = measure(args.dbrg, source, workdir, reference)
-            print(row(name, stats, report), flush=True)
+    for name, source, reference in inputs:
+        stats, report = measure(dbrg, source, workdir, reference)
+        print(row(name, stats, report), flush=True)
 
 
 if __name__ == "__main__":

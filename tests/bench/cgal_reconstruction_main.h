@@ -41,6 +41,7 @@ int run_reconstruction(int argc, char** argv, const char* program, Reconstruct r
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     mesh.triangles.clear();
+    mesh.face_properties.clear();  // the input's, when it was a mesh: they describe other faces
     for (const Facet& facet : facets) {
         for (std::size_t corner : facet) mesh.triangles.push_back(static_cast<uint32_t>(corner));
     }
