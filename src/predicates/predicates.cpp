@@ -24,9 +24,26 @@
 namespace dbrg {
 namespace {
 
+// The exact sign: from the lattice stage when the points qualify (counted), else from the integer stage.
+template <class OnLattice, class InIntegers>
+int exact_sign(PredicateCounters& counters, OnLattice on_lattice, InIntegers in_integers) {
+    const int sign = on_lattice();
+    if (sign == exact::NOT_ON_LATTICE) return in_integers();
+    ++counters.lattice;
+    return sign;
+}
+
+int exact_orient2d(const double* a, const double* b, const double* c, int u, int v, PredicateCounters& counters) {
+    return exact_sign(
+        counters, [&] { return exact::orient2d_on_lattice(a, b, c, u, v); }, [&] { return exact::orient2d(a, b, c, u, v); });
+}
+
+// incircle3d_sos's choice of a projection, which the counters do not see.
 int orient2d_sign(const double* a, const double* b, const double* c, int u, int v) {
     const int sign = filter::orient2d(a, b, c, u, v);
-    return sign != filter::UNDECIDED ? sign : exact::orient2d(a, b, c, u, v);
+    if (sign != filter::UNDECIDED) return sign;
+    PredicateCounters uncounted;
+    return exact_orient2d(a, b, c, u, v, uncounted);
 }
 
 // The point that decides a perturbation: among the n points whose lift cofactor is not zero, the
@@ -61,20 +78,25 @@ namespace slow_path {
 
 int orient3d(const double* a, const double* b, const double* c, const double* d, PredicateCounters& counters) {
     ++counters.filter_failures;
-    return exact::orient3d(a, b, c, d);
+    return exact_sign(
+        counters, [&] { return exact::orient3d_on_lattice(a, b, c, d); }, [&] { return exact::orient3d(a, b, c, d); });
 }
 
 int insphere_exact(const double* a, const double* b, const double* c, const double* d, const double* e,
                    PredicateCounters& counters) {
     ++counters.filter_failures;
-    return exact::insphere(a, b, c, d, e, nullptr);
+    return exact_sign(
+        counters, [&] { return exact::insphere_on_lattice(a, b, c, d, e, nullptr); },
+        [&] { return exact::insphere(a, b, c, d, e, nullptr); });
 }
 
 int insphere_sos(const double* a, const double* b, const double* c, const double* d, const double* e,
                  PredicateCounters& counters) {
     ++counters.filter_failures;
     int orientations[5];
-    const int sign = exact::insphere(a, b, c, d, e, orientations);
+    const int sign = exact_sign(
+        counters, [&] { return exact::insphere_on_lattice(a, b, c, d, e, orientations); },
+        [&] { return exact::insphere(a, b, c, d, e, orientations); });
     if (sign != 0) return sign;
     ++counters.perturbations;
     const double* points[5] = {a, b, c, d, e};
@@ -117,7 +139,9 @@ int incircle3d_sos(const double* a, const double* b, const double* c, const doub
         int orientations[4];
         if (sign == filter::UNDECIDED) {
             ++counters.filter_failures;
-            sign = exact::incircle_lifted(a, b, c, d, u, v, orientations);
+            sign = exact_sign(
+                counters, [&] { return exact::incircle_lifted_on_lattice(a, b, c, d, u, v, orientations); },
+                [&] { return exact::incircle_lifted(a, b, c, d, u, v, orientations); });
         }
         if (sign == 0) {
             ++counters.perturbations;
@@ -134,7 +158,7 @@ int orient2d(const double* a, const double* b, const double* c, int u, int v, Pr
     const int sign = filter::orient2d(a, b, c, u, v);
     if (sign != filter::UNDECIDED) return sign;
     ++counters.filter_failures;
-    return exact::orient2d(a, b, c, u, v);
+    return exact_orient2d(a, b, c, u, v, counters);
 }
 
 int compare_points(const double* a, const double* b) {
