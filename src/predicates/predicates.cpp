@@ -53,10 +53,15 @@ int orient2d_sign(const double* a, const double* b, const double* c, int u, int 
 
 // The point that decides a perturbation: among the n points whose lift cofactor is not zero, the
 // lexicographically smallest (the first in argument order among equal ones), or -1 when all are zero.
+// Lexicographic order without branches: on grids the points of a call often share coordinates, and the
+// branches of compare_points were mispredicted there.
 int deciding_point(const double* const* points, const int* cofactor_signs, int n) {
+    const auto before = [](const double* p, const double* q) {
+        return (p[0] < q[0]) | ((p[0] == q[0]) & ((p[1] < q[1]) | ((p[1] == q[1]) & (p[2] < q[2]))));
+    };
     int best = -1;
     for (int i = 0; i < n; ++i) {
-        if (cofactor_signs[i] != 0 && (best < 0 || compare_points(points[i], points[best]) < 0)) best = i;
+        if (cofactor_signs[i] != 0 && (best < 0 || before(points[i], points[best]))) best = i;
     }
     return best;
 }
