@@ -4,6 +4,8 @@
 // no rounding to reason about and the same steps whatever the values, so exact zeros and near-ties cost
 // the same, in the cheapest type that holds it: machine words for lattice-like points, one 64-bit limb per
 // difference for the doubles of a generic point cloud, two or four for coordinates of very unequal size.
+// Before all of these, grids and other coarse lattices get the same determinants in doubles, where that
+// evaluation is provably exact (the lattice stage, below).
 #include "predicates/exact_determinants.h"
 
 #include <assert.h>

@@ -1,5 +1,6 @@
-// Geometric predicates: the floating-point filter first, exact integer arithmetic when it cannot decide,
-// and symbolic perturbation of the lifted coordinate when the exact value is zero.
+// Geometric predicates: the floating-point filter first, exact arithmetic when it cannot decide (in doubles
+// for points on a coarse lattice, else in integers), and symbolic perturbation of the lifted coordinate
+// when the exact value is zero.
 //
 // Based on: H. Edelsbrunner and E. P. Mücke, "Simulation of Simplicity" (1990), applied to the lift only
 // as in O. Devillers and M. Teillaud, "Perturbations for Delaunay and weighted Delaunay 3D

@@ -1,5 +1,6 @@
-// Geometric predicates: orient3d and insphere with a floating-point filter, an exact fixed-width integer
-// fallback and symbolic perturbation, so that Delaunay decisions are exact and never ambiguous.
+// Geometric predicates: orient3d and insphere with a floating-point filter, an exact fallback (in doubles on
+// coarse lattices, where they are exact, else in fixed-width integers) and symbolic perturbation, so that
+// Delaunay decisions are exact and never ambiguous.
 //
 // Based on: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
 // Predicates" (1997) for the filters' error bounds; H. Edelsbrunner and E. P. Mücke, "Simulation of
