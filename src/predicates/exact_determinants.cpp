@@ -261,13 +261,13 @@ int orient2d_sign(const Integer (*rows)[3], int u, int v) {
 // determinant so that no value reaches 2^53 units^degree, so every operation is exact: the sign, zero
 // included, and the perturbation's cofactors are those of the integer stage. From the largest value of
 // each tree for differences below D:
-//   insphere (degree 5): 4 lifts (< 3 D^2) times 3x3 minors (< 6 D^3), summed: < 72 D^5 < 2^53 for D <= 2^9;
-//   incircle_lifted (4): 3 lifts times 2x2 minors (< 2 D^2), < 18 D^4: D <= 2^12;
-//   orient3d (3): < 6 D^3: D <= 2^16;  orient2d (2): < 2 D^2: D <= 2^25.
-// g is the least power the width allows: the coarsest grid a coordinate can be tested against. g <= 0
-// keeps the scaling of that test exact, and degree * g >= -1074 keeps each unit^degree representable
-// (subnormal at worst, exactly). A conditioned grid passes (a 58^3 grid at g = -6 .. -9); a point cloud
-// with full significands fails on its first coordinates.
+//   insphere (degree 5): 4 lifts (< 3 D^2) times 3x3 minors (< 6 D^3), summed: < 72 D^5 < 2^53 for D < 2^9;
+//   incircle_lifted (4): 3 lifts times 2x2 minors (< 2 D^2), < 18 D^4: D < 2^12;
+//   orient3d (3): < 6 D^3: D < 2^16;  orient2d (2): < 2 D^2: D < 2^25.
+// g is the least power the width allows for the call's largest difference: the finest grid, so the
+// weakest test of the coordinates. g <= 0 keeps the scaling of that test exact, and degree * g >= -1074
+// keeps each unit^degree representable (subnormal at worst, exactly). The conditioned points of a grid
+// pass; a point cloud with full significands fails the test.
 // Whether every coordinate of the points times scale (a power of two, at least 1, so the products are
 // exact) is an integer: whether it survives the round trip through a 32-bit integer (one out of that
 // range does not, nor does a NaN, and is left to the integer stage).
@@ -290,7 +290,7 @@ template <int Points>
     for (int i = 0; i < Points; ++i) {
         for (int k = 0; k < 3; ++k) {
             const double v = points[i][k] * scale;
-            integral &= static_cast<double>(static_cast<int32_t>(v)) == v;
+            integral &= fabs(v) < 0x1p31 && static_cast<double>(static_cast<int32_t>(v)) == v;  // no cast out of range
         }
     }
     return integral;
