@@ -14,6 +14,7 @@
 #include "core/splitmix64.h"
 #include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
+#include "predicates/affine_checks.h"
 #include "predicates/exact_determinants.h"
 #include "predicates/filters.h"
 #include "predicates/predicates.h"
@@ -1254,6 +1255,180 @@ TEST_CASE("the exact stage at the limits of each of its integer types") {
             REQUIRE(exact::incircle_lifted(f1, f2, f3, on_face, 1, 2, orientations) == turn);
             REQUIRE(exact::incircle_lifted(f1, f2, f3, face_corner, 1, 2, orientations) == 0);
         }
+    }
+}
+
+namespace {
+
+// How often the lattice stage answered and how often it left a call to the integer stage.
+struct LatticeTally {
+    int decided = 0, declined = 0;
+};
+
+// Each answer of the lattice stage against the integer stage's on the same points: the same sign, and for
+// a zero the same perturbation cofactors; orientations untouched when it declines.
+void check_lattice_stage(const Point* q, LatticeTally& tally) {
+    const auto count = [&tally](int sign) {
+        ++(sign == exact::NOT_ON_LATTICE ? tally.declined : tally.decided);
+        return sign != exact::NOT_ON_LATTICE;
+    };
+    const int o = exact::orient3d_on_lattice(q[0], q[1], q[2], q[3]);
+    if (count(o)) REQUIRE(o == exact::orient3d(q[0], q[1], q[2], q[3]));
+    const int o2 = exact::orient2d_on_lattice(q[0], q[1], q[2], 2, 0);
+    if (count(o2)) REQUIRE(o2 == exact::orient2d(q[0], q[1], q[2], 2, 0));
+
+    int lattice[5] = {9, 9, 9, 9, 9}, integer[5] = {9, 9, 9, 9, 9};
+    const int s = exact::insphere_on_lattice(q[0], q[1], q[2], q[3], q[4], lattice);
+    if (count(s)) {
+        REQUIRE(s == exact::insphere(q[0], q[1], q[2], q[3], q[4], integer));
+        for (int i = 0; i < 5; ++i) REQUIRE(lattice[i] == integer[i]);
+    } else {
+        for (int i = 0; i < 5; ++i) REQUIRE(lattice[i] == 9);
+    }
+    int lattice_circle[4] = {9, 9, 9, 9}, integer_circle[4] = {9, 9, 9, 9};
+    const int c = exact::incircle_lifted_on_lattice(q[0], q[1], q[2], q[3], 1, 2, lattice_circle);
+    if (count(c)) {
+        REQUIRE(c == exact::incircle_lifted(q[0], q[1], q[2], q[3], 1, 2, integer_circle));
+        for (int i = 0; i < 4; ++i) REQUIRE(lattice_circle[i] == integer_circle[i]);
+    }
+}
+
+// Three integers below 2^bits, the first with its top bit set.
+void integer_vector(Random& random, int bits, double r[3]) {
+    const uint64_t top = uint64_t(1) << (bits - 1);
+    r[0] = static_cast<double>(top | (random.next() & (top - 1)));
+    r[1] = static_cast<double>(random.next() & (2 * top - 1));
+    r[2] = static_cast<double>(random.next() & (2 * top - 1));
+}
+
+} // namespace
+
+TEST_CASE("the lattice stage gives the integer stage's signs and cofactors, 2^-500 to 2^500 times the points") {
+    // Signed permutations of an integer vector (cospherical), those of them in the plane x = y (coplanar)
+    // and with x = 0 (cocircular on a sphere), about an integer centre, some moved by one unit: exact
+    // zeros and the smallest non-zero values, with differences up to 2^19 units, beyond the widest the
+    // stage takes for each determinant. Then scaled: the stage works for units from 2^-214 (insphere) to 1.
+    Random random(26);
+    LatticeTally tally, at_unit_scale;
+    for (int bits = 1; bits <= 18; ++bits) {
+        CAPTURE(bits);
+        double r[3];
+        integer_vector(random, bits, r);
+        std::vector<Point> sphere = signed_permutations(r), plane, circle;
+        // Zeros among r repeat points: keep one of each.
+        const auto before = [](const Point& a, const Point& b) { return compare_points(a, b) < 0; };
+        const auto same = [](const Point& a, const Point& b) { return compare_points(a, b) == 0; };
+        std::sort(sphere.begin(), sphere.end(), before);
+        sphere.erase(std::unique(sphere.begin(), sphere.end(), same), sphere.end());
+        for (const Point& p : sphere) {
+            if (p.c[0] == p.c[1]) plane.push_back(p);
+            if (p.c[0] == 0) circle.push_back(p);
+        }
+        for (int trial = 0; trial < 60; ++trial) {
+            Point p[5];
+            const std::vector<Point>& set = trial % 3 == 0 ? sphere : trial % 3 == 1 ? plane : circle;
+            if (set.size() < 5) continue;
+            draw_distinct(random, set, 5, p);
+            if (trial % 2 == 1) p[random.next() % 5].c[random.next() % 3] += 1;
+            const double centre[3] = {double(random.integer(-1000, 1000)), double(random.integer(-1000, 1000)), 0};
+            for (Point& q : p)
+                for (int k = 0; k < 3; ++k) q.c[k] += centre[k];
+            check_lattice_stage(p, at_unit_scale);
+            for (const int exponent : {-500, -300, -214, -200, -100, -20, -9, 9, 40, 500}) {
+                CAPTURE(exponent);
+                Point q[5];
+                for (int i = 0; i < 5; ++i)
+                    for (int k = 0; k < 3; ++k) q[i].c[k] = ldexp(p[i].c[k], exponent);
+                check_lattice_stage(q, tally);
+            }
+        }
+    }
+    // Taken at some widths and scales, left to the integer stage at others.
+    CHECK(at_unit_scale.decided > 1000);
+    CHECK(tally.decided > 4000);
+    CHECK(tally.declined > 4000);
+}
+
+TEST_CASE("the lattice stage at the edge of its widths: exact zeros of full-significand integers") {
+    // Integer points on spheres of radius 2^7 to 2^14 (differences to either side of insphere's width,
+    // 2^9 units) and on planes spanned by random integer vectors of 2^13 to 2^18 (either side of
+    // orient3d's, 2^16): their determinants' terms have all their bits, so a width far too large for
+    // doubles turns the exact zeros into rounding noise. The widths' bounds are worst cases, a few bits
+    // above the values these reach: a width one or two too large passes here.
+    Random random(28);
+    LatticeTally tally;
+    for (int bits = 7; bits <= 14; ++bits) {
+        // (2 (m q + n p), 2 (n q - m p), m^2 + n^2 - p^2 - q^2) has length m^2 + n^2 + p^2 + q^2 (Euler's
+        // four-square identity): many full-bit points of one sphere from the ways to write its radius.
+        const int radius = (1 << bits) + random.integer(0, 1 << (bits - 2));
+        std::vector<Point> sphere;
+        const int bound = static_cast<int>(sqrt(double(radius)));
+        for (int m = 0; m <= bound; ++m)
+            for (int n = -bound; n <= bound; ++n)
+                for (int q = -bound; q <= bound; ++q) {
+                    const int rest = radius - m * m - n * n - q * q;
+                    const int p = rest < 0 ? -1 : static_cast<int>(sqrt(double(rest)) + 0.5);
+                    if (p < 0 || p * p != rest) continue;
+                    sphere.push_back(Point{{2.0 * (m * q + n * p), 2.0 * (n * q - m * p), double(m * m + n * n - p * p - q * q)}});
+                }
+        std::sort(sphere.begin(), sphere.end(), [](const Point& a, const Point& b) { return compare_points(a, b) < 0; });
+        sphere.erase(std::unique(sphere.begin(), sphere.end(), [](const Point& a, const Point& b) { return compare_points(a, b) == 0; }),
+                     sphere.end());
+        REQUIRE(sphere.size() >= 20);
+        for (int trial = 0; trial < 400; ++trial) {
+            Point p[5];
+            draw_distinct(random, sphere, 5, p);
+            check_lattice_stage(p, tally);
+        }
+    }
+    for (int bits = 13; bits <= 18; ++bits) {
+        double a[3], b[3];
+        integer_vector(random, bits, a);
+        integer_vector(random, bits, b);
+        for (int trial = 0; trial < 400; ++trial) {
+            Point p[5];
+            for (int i = 0; i < 5; ++i) {
+                // Four on the plane through the origin spanned by a and b, the fifth anywhere near.
+                const int s = random.integer(-1, 1), t = random.integer(-1, 1);
+                for (int k = 0; k < 3; ++k) p[i].c[k] = i < 4 ? s * a[k] + t * b[k] : double(random.integer(-1000, 1000));
+            }
+            check_lattice_stage(p, tally);
+        }
+    }
+    CHECK(tally.decided > 2000);
+    CHECK(tally.declined > 2000);
+}
+
+TEST_CASE("the public predicates on a grid: exact zeros decided on the lattice, as the reference decides them") {
+    // The integer points of a 5^3 cube times 2^-3 and times 2^-190 (multiples of 2^-200 either way):
+    // cospherical, coplanar and cocircular everywhere.
+    Random random(27);
+    for (const int exponent : {-3, -190}) {
+        CAPTURE(exponent);
+        PredicateCounters counters;
+        for (int trial = 0; trial < 4000; ++trial) {
+            Point u[5];
+            do {
+                for (Point& q : u) q = lattice_point(random, -2, 2);
+            } while (!distinct(u, 5));
+            Point p[5];
+            for (int i = 0; i < 5; ++i)
+                for (int k = 0; k < 3; ++k) p[i].c[k] = ldexp(u[i].c[k], exponent);
+            REQUIRE(orient3d(p[0], p[1], p[2], p[3], counters) == reference_orient3d(p[0], p[1], p[2], p[3]));
+            REQUIRE(insphere_exact(p[0], p[1], p[2], p[3], p[4], counters) ==
+                    reference_insphere(p[0], p[1], p[2], p[3], p[4]));
+            REQUIRE(insphere_sos(p[0], p[1], p[2], p[3], p[4], counters) == reference_insphere_sos(p));
+            if (reference_orient3d(u[0], u[1], u[2], u[3]) == 0 && !points_collinear(u[0], u[1], u[2], counters)) {
+                // Coplanar: incircle3d_sos is the limit of the explicit perturbation with a point q off the plane.
+                Point q;
+                do q = lattice_point(random, -8, 8);
+                while (reference_orient3d(u[0], u[1], u[2], q) == 0);
+                REQUIRE(incircle3d_sos(p[0], p[1], p[2], p[3], counters) == brute_force_incircle3d_sos(u[0], u[1], u[2], u[3], q));
+            }
+        }
+        // Nearly all exact work was done on the lattice.
+        CHECK(counters.filter_failures > 500);
+        CHECK(counters.lattice * 10 >= counters.filter_failures * 9);
     }
 }
 

@@ -4,6 +4,8 @@
 // no rounding to reason about and the same steps whatever the values, so exact zeros and near-ties cost
 // the same, in the cheapest type that holds it: machine words for lattice-like points, one 64-bit limb per
 // difference for the doubles of a generic point cloud, two or four for coordinates of very unequal size.
+// Before all of these, grids and other coarse lattices get the same determinants in doubles, where that
+// evaluation is provably exact (the lattice stage, below).
 #include "predicates/exact_determinants.h"
 
 #include <assert.h>
@@ -11,6 +13,10 @@
 #include <string.h>
 
 #include "predicates/wide_integer.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace dbrg {
 namespace exact {
@@ -180,6 +186,8 @@ int sign_of(const Int<K>& value) {
 
 int sign_of(int64_t value) { return (value > 0) - (value < 0); }
 
+int sign_of(double value) { return (value > 0) - (value < 0); }
+
 // p[u] q[v] - q[u] p[v].
 template <class Integer>
 [[gnu::always_inline]] inline auto minor2(const Integer* p, const Integer* q, int u, int v) {
@@ -246,7 +254,93 @@ int orient2d_sign(const Integer (*rows)[3], int u, int v) {
     return sign_of(minor2(rows[0], rows[1], u, v));
 }
 
+// The lattice stage: the same determinants evaluated in doubles, when that evaluation is exact. Say every
+// coordinate of the call is a multiple of 2^g, and every difference below 2^(g + Width): then each
+// difference is an integer number of units 2^g below 2^Width, so the rounded difference is the exact one,
+// and every value of a determinant's tree is an integer number of units^degree. Width is chosen per
+// determinant so that no value reaches 2^53 units^degree, so every operation is exact: the sign, zero
+// included, and the perturbation's cofactors are those of the integer stage. From the largest value of
+// each tree for differences below D:
+//   insphere (degree 5): 4 lifts (< 3 D^2) times 3x3 minors (< 6 D^3), summed: < 72 D^5 < 2^53 for D < 2^9;
+//   incircle_lifted (4): 3 lifts times 2x2 minors (< 2 D^2), < 18 D^4: D < 2^12;
+//   orient3d (3): < 6 D^3: D < 2^16;  orient2d (2): < 2 D^2: D < 2^25.
+// g is the least power the width allows for the call's largest difference: the finest grid, so the
+// weakest test of the coordinates. g <= 0 keeps the scaling of that test exact, and degree * g >= -1074
+// keeps each unit^degree representable (subnormal at worst, exactly). The conditioned points of a grid
+// pass; a point cloud with full significands fails the test.
+// Whether every coordinate of the points times scale (a power of two, at least 1, so the products are
+// exact) is an integer: whether it survives the round trip through a 32-bit integer (one out of that
+// range does not, nor does a NaN, and is left to the integer stage).
+template <int Points>
+[[gnu::always_inline]] inline bool integral_multiples(const double* const* points, double scale) {
+#if defined(__SSE2__)
+    // Two coordinates at a time: each point's (x, y), then the z of two points.
+    const __m128d factor = _mm_set1_pd(scale);
+    __m128d off = _mm_setzero_pd();
+    const auto test = [&](__m128d pair) {
+        const __m128d v = _mm_mul_pd(pair, factor);
+        off = _mm_or_pd(off, _mm_cmpneq_pd(_mm_cvtepi32_pd(_mm_cvttpd_epi32(v)), v));
+    };
+    for (int i = 0; i < Points; ++i) test(_mm_loadu_pd(points[i]));
+    for (int i = 0; i + 1 < Points; i += 2) test(_mm_set_pd(points[i + 1][2], points[i][2]));
+    if (Points % 2 != 0) test(_mm_set1_pd(points[Points - 1][2]));
+    return _mm_movemask_pd(off) == 0;
+#else
+    bool integral = true;
+    for (int i = 0; i < Points; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            const double v = points[i][k] * scale;
+            integral &= fabs(v) < 0x1p31 && static_cast<double>(static_cast<int32_t>(v)) == v;  // no cast out of range
+        }
+    }
+    return integral;
+#endif
+}
+
+template <int Degree, int Width, int Points, class Evaluate>
+[[gnu::always_inline]] inline int evaluate_on_lattice(const double* const* points, Evaluate evaluate) {
+    double rows[Points - 1][3];
+    double largest = 0;
+    for (int i = 0; i < Points - 1; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            rows[i][k] = points[i][k] - points[Points - 1][k];
+            largest = fabs(rows[i][k]) > largest ? fabs(rows[i][k]) : largest;  // fmax would be a call
+        }
+    }
+    // Rounding is monotone: a rounded difference below 2^e is one of an exact difference below it.
+    int g = exponent_above(largest) - Width;
+    g = g < -(1074 / Degree) ? -(1074 / Degree) : g;
+    if (g > 0) return NOT_ON_LATTICE;
+    return integral_multiples<Points>(points, power_of_two(-g)) ? evaluate(rows) : NOT_ON_LATTICE;
+}
+
 } // namespace
+
+int orient3d_on_lattice(const double* a, const double* b, const double* c, const double* d) {
+    const double* points[4] = {a, b, c, d};
+    return evaluate_on_lattice<3, 16, 4>(points, [](const double(*rows)[3]) { return orient3d_sign(rows); });
+}
+
+int insphere_on_lattice(const double* a, const double* b, const double* c, const double* d, const double* e,
+                        int* orientations) {
+    const double* points[5] = {a, b, c, d, e};
+    return evaluate_on_lattice<5, 9, 5>(
+        points, [orientations](const double(*rows)[3]) { return insphere_sign(rows, orientations); });
+}
+
+int incircle_lifted_on_lattice(const double* a, const double* b, const double* c, const double* d, int u, int v,
+                               int* orientations) {
+    const double* points[4] = {a, b, c, d};
+    return evaluate_on_lattice<4, 12, 4>(points, [u, v, orientations](const double(*rows)[3]) {
+        return incircle_lifted_sign(rows, u, v, orientations);
+    });
+}
+
+int orient2d_on_lattice(const double* a, const double* b, const double* c, int u, int v) {
+    const double* points[3] = {a, b, c};
+    return evaluate_on_lattice<2, 25, 3>(points,
+                                         [u, v](const double(*rows)[3]) { return orient2d_sign(rows, u, v); });
+}
 
 int orient3d(const double* a, const double* b, const double* c, const double* d) {
     const double* points[4] = {a, b, c, d};

@@ -24,5 +24,18 @@ int incircle_lifted(const double* a, const double* b, const double* c, const dou
 // Sign of det[a - c; b - c] for the projections onto the coordinates u, v.
 int orient2d(const double* a, const double* b, const double* c, int u, int v);
 
+// The same four in doubles, for points on a coarse lattice (grids; every coordinate of the call a
+// multiple of one power of two, with differences of at most a few hundred to a few million units, see
+// exact_determinants.cpp), where that evaluation has no rounding: each returns what the function above
+// returns, orientations included, or NOT_ON_LATTICE, leaving orientations as they were, when the points
+// do not qualify. About a third of the cost of the integer stage.
+constexpr int NOT_ON_LATTICE = 2;
+int orient3d_on_lattice(const double* a, const double* b, const double* c, const double* d);
+int insphere_on_lattice(const double* a, const double* b, const double* c, const double* d, const double* e,
+                        int* orientations);
+int incircle_lifted_on_lattice(const double* a, const double* b, const double* c, const double* d, int u, int v,
+                               int* orientations);
+int orient2d_on_lattice(const double* a, const double* b, const double* c, int u, int v);
+
 } // namespace exact
 } // namespace dbrg

@@ -1,5 +1,6 @@
-// Geometric predicates: orient3d and insphere with a floating-point filter, an exact fixed-width integer
-// fallback and symbolic perturbation, so that Delaunay decisions are exact and never ambiguous.
+// Geometric predicates: orient3d and insphere with a floating-point filter, an exact fallback (in doubles on
+// coarse lattices, where they are exact, else in fixed-width integers) and symbolic perturbation, so that
+// Delaunay decisions are exact and never ambiguous.
 //
 // Based on: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
 // Predicates" (1997) for the filters' error bounds; H. Edelsbrunner and E. P. Mücke, "Simulation of
@@ -26,12 +27,14 @@ struct PredicateCounters {
     uint64_t calls = 0;            // every orient3d / insphere_exact / insphere_sos / incircle3d_sos / orient2d call
     uint64_t filter_failures = 0;  // the floating-point filter could not decide; exact arithmetic ran
     uint64_t perturbations = 0;    // the exact value was zero; symbolic perturbation decided
+    uint64_t lattice = 0;          // exact evaluations done in doubles, the points being on a coarse lattice
 
     // Adds another set of counts (each thread of a parallel insertion keeps its own).
     PredicateCounters& operator+=(const PredicateCounters& other) {
         calls += other.calls;
         filter_failures += other.filter_failures;
         perturbations += other.perturbations;
+        lattice += other.lattice;
         return *this;
     }
 };
