@@ -39,40 +39,48 @@ struct Sampled {
     bool operator<(const Sampled& other) const { return hash != other.hash ? hash < other.hash : xyz < other.xyz; }
 };
 
-// The cells of estimate_spacing's grid, keyed by their coordinates (each below 2^21, and as far below
-// zero as the rings searched reach).
+// Cells of a grid from the box's low corner, keyed by their coordinates (each below 2^21 and at least -1).
 struct Grid {
     double low[3];
     double cell;
 
     int64_t coordinate(const double* p, int axis) const { return static_cast<int64_t>((p[axis] - low[axis]) / cell); }
     static uint64_t key(int64_t x, int64_t y, int64_t z) {
-        const int64_t offset = 64;
+        const int64_t offset = 1;
         return uint64_t(x + offset) << 42 | uint64_t(y + offset) << 21 | uint64_t(z + offset);
     }
 };
 
-// One pass searching `rings` cells around each of `queries` (indices into `xyz`) for the nearest other
-// point; lowers best[q].
+// One pass over the file finding, for each of `queries` (indices into `xyz`), the nearest other point in
+// its cell of `grid` and the 26 around it; lowers best[q]. The cells around the queries are listed once,
+// so a point costs one look-up.
 io::IoStatus search_pass(io::PointReader& reader, const Grid& grid, const std::vector<std::array<double, 3>>& xyz,
-                         const std::vector<uint32_t>& queries, int rings, std::vector<double>& best) {
-    std::unordered_map<uint64_t, std::vector<uint32_t>> near;
+                         const std::vector<uint32_t>& queries, std::vector<double>& best) {
+    std::vector<std::pair<uint64_t, uint32_t>> around;  // (cell, query), sorted
+    around.reserve(27 * queries.size());
     for (uint32_t q : queries) {
         const double* p = xyz[q].data();
         const int64_t c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
-        for (int64_t x = c[0] - rings; x <= c[0] + rings; ++x) {
-            for (int64_t y = c[1] - rings; y <= c[1] + rings; ++y) {
-                for (int64_t z = c[2] - rings; z <= c[2] + rings; ++z) near[Grid::key(x, y, z)].push_back(q);
+        for (int64_t x = c[0] - 1; x <= c[0] + 1; ++x) {
+            for (int64_t y = c[1] - 1; y <= c[1] + 1; ++y) {
+                for (int64_t z = c[2] - 1; z <= c[2] + 1; ++z) around.emplace_back(Grid::key(x, y, z), q);
             }
         }
     }
+    std::sort(around.begin(), around.end());
+    std::unordered_map<uint64_t, uint32_t> first;  // cell -> its first entry in `around`
+    first.reserve(around.size());
+    for (size_t i = around.size(); i-- > 0;) first[around[i].first] = uint32_t(i);
     return for_each_point(reader, [&](const double* p, uint64_t) {
-        const auto found = near.find(Grid::key(grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)));
-        if (found == near.end()) return;
-        for (uint32_t q : found->second) {
-            const double dx = p[0] - xyz[q][0], dy = p[1] - xyz[q][1], dz = p[2] - xyz[q][2];
+        const uint64_t key = Grid::key(grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2));
+        const auto found = first.find(key);
+        if (found == first.end()) return;
+        for (size_t i = found->second; i < around.size() && around[i].first == key; ++i) {
+            const std::array<double, 3>& q = xyz[around[i].second];
+            const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
             const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-            if (d > 0 && d < best[q]) best[q] = d;
+            double& nearest = best[around[i].second];
+            if (d > 0 && d < nearest) nearest = d;
         }
     });
 }
@@ -114,7 +122,7 @@ io::IoStatus stream_spacing(io::PointReader& reader, const CloudSummary& summary
     const double extent = std::max({summary.high[0] - summary.low[0], summary.high[1] - summary.low[1],
                                     summary.high[2] - summary.low[2]});
     if (!(extent > 0)) return io::IoStatus::success();
-    Grid grid{{summary.low[0], summary.low[1], summary.low[2]}, spacing_grid_cell(extent, summary.count)};
+    const double cell = spacing_grid_cell(extent, summary.count);
     const uint64_t stride = spacing_sample_stride(summary.count);
     std::vector<std::array<double, 3>> xyz;
     io::IoStatus status = for_each_point(reader, [&](const double* p, uint64_t) {
@@ -124,13 +132,16 @@ io::IoStatus stream_spacing(io::PointReader& reader, const CloudSummary& summary
     std::vector<double> best(xyz.size(), HUGE_VAL);
     std::vector<uint32_t> queries(xyz.size());
     for (uint32_t q = 0; q < queries.size(); ++q) queries[q] = q;
-    // A neighbour found within `rings` cells is the nearest: every point outside is further away.
-    for (int rings : {1, 3}) {
-        status = search_pass(reader, grid, xyz, queries, rings, best);
+    // Cells of 4 of the whole-cloud grid's cells settle nearly every sample point; cells of 16 the rest,
+    // as far as the whole-cloud search looks. A neighbour found no further than a cell's side is the
+    // nearest: every point outside the 27 cells searched is further away.
+    for (double scale : {4.0, 16.0}) {
+        const Grid grid{{summary.low[0], summary.low[1], summary.low[2]}, scale * cell};
+        status = search_pass(reader, grid, xyz, queries, best);
         if (!status) return status;
         std::vector<uint32_t> unresolved;
         for (uint32_t q : queries) {
-            if (!(best[q] <= rings * grid.cell)) unresolved.push_back(q);
+            if (!(best[q] <= grid.cell)) unresolved.push_back(q);
         }
         queries.swap(unresolved);
         if (queries.empty()) break;
@@ -140,7 +151,7 @@ io::IoStatus stream_spacing(io::PointReader& reader, const CloudSummary& summary
         if (d != HUGE_VAL) distances.push_back(d);
     }
     if (distances.empty()) {
-        spacing = grid.cell;
+        spacing = cell;
         return status;
     }
     const auto percentile = distances.begin() + distances.size() * 9 / 10;

@@ -37,9 +37,9 @@ io::IoStatus summarize(io::PointReader& reader, CloudSummary& summary);
 
 // The point spacing estimate_spacing (point_spacing.h) gives for the whole cloud, from two passes: one
 // picking its hash-chosen sample, one searching the cells around each sample point for its nearest
-// neighbour (in one more pass, further out, for the few not found close by). A sample point whose
-// neighbour is further than 3 cells counts as isolated, as one further than 16 does in the whole-cloud
-// estimate: the figures differ only for such outliers.
+// neighbour (in one more pass, further out, for the few not found close by). The figures differ only
+// where a sample point's nearest neighbour is more than 16 of the whole-cloud search's cells away (an
+// outlier), which the two searches treat differently.
 io::IoStatus stream_spacing(io::PointReader& reader, const CloudSummary& summary, double& spacing);
 
 // The inner walls of `tile_count` slabs along summary.axis at quantiles of the sample, dropping walls
