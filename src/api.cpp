@@ -1,4 +1,5 @@
 // The C ABI boundary: argument checks, status codes and result objects. The only file with extern "C".
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -114,11 +115,12 @@ struct dbrg_mesh : ResultBase {
 };
 
 struct dbrg_tile_mesh : ResultBase {
-    explicit dbrg_tile_mesh(const dbrg_allocator* allocator) : ResultBase(allocator), triangles(memory) {
+    explicit dbrg_tile_mesh(const dbrg_allocator* allocator) : ResultBase(allocator), triangles(memory), dropped(memory) {
         memset(&stats, 0, sizeof stats);
         stats.struct_size = sizeof stats;
     }
     Array<uint64_t> triangles;  // global ids
+    Array<uint64_t> dropped;    // a seam stitch's: indices into its faces
     dbrg_stats stats;
 };
 
@@ -157,8 +159,59 @@ dbrg_status local_indices(const uint64_t* ids, size_t count, const uint64_t* wan
     return DBRG_OK;
 }
 
-// A call that hands back a dbrg_tile_mesh: `work(context, triangles)` writes triangles as indices into
-// `points`, handed back as their global ids.
+// Reads a dbrg_tiling's axis and spacing, checked.
+dbrg_status read_tiling(const dbrg_tiling* tiling, Context& context, int& axis, double& spacing) {
+    if (!tiling) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "tiling is NULL");
+    if (tiling->struct_size < sizeof(dbrg_tiling)) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "tiling->struct_size is %zu; this library needs %zu",
+                            tiling->struct_size, sizeof(dbrg_tiling));
+    }
+    if (tiling->axis > 2) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "tiling->axis is %u; 0, 1 or 2", tiling->axis);
+    if (!(tiling->spacing > 0 && tiling->spacing < HUGE_VAL)) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "tiling->spacing is %g; a positive finite length", tiling->spacing);
+    }
+    axis = static_cast<int>(tiling->axis);
+    spacing = tiling->spacing;
+    return DBRG_OK;
+}
+
+// The caller's points in ascending order of their ids, `sorted` (3 doubles each), and `faces` (global ids)
+// as indices into them. `order[k]` is the caller's index of sorted point k.
+dbrg_status sort_by_id(const Array<double>& xyz, const uint64_t* ids, const uint64_t* faces, size_t face_count,
+                       Context& context, Array<uint32_t>& order, Array<double>& sorted, Array<uint32_t>& local_faces) {
+    const size_t count = xyz.size() / 3;
+    Array<uint64_t> sorted_ids(context.memory);
+    if (!order.resize(count) || !sorted.resize(3 * count) || !sorted_ids.resize(count) ||
+        !local_faces.resize(3 * face_count)) {
+        return context.fail_out_of_memory();
+    }
+    for (size_t i = 0; i < count; ++i) order[i] = static_cast<uint32_t>(i);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return ids[a] < ids[b]; });
+    for (size_t k = 0; k < count; ++k) {
+        sorted_ids[k] = ids[order[k]];
+        if (k > 0 && sorted_ids[k] == sorted_ids[k - 1]) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "point_ids repeats the id %llu",
+                                static_cast<unsigned long long>(sorted_ids[k]));
+        }
+        for (int a = 0; a < 3; ++a) sorted[3 * k + a] = xyz[3 * size_t(order[k]) + a];
+    }
+    for (size_t i = 0; i < 3 * face_count; ++i) {
+        const uint64_t* at = std::lower_bound(sorted_ids.begin(), sorted_ids.end(), faces[i]);
+        if (at == sorted_ids.end() || *at != faces[i]) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "face %zu uses the id %llu, which is not among point_ids",
+                                i / 3, static_cast<unsigned long long>(faces[i]));
+        }
+        local_faces[i] = static_cast<uint32_t>(at - sorted_ids.begin());
+        if (i % 3 == 2 && (local_faces[i] == local_faces[i - 1] || local_faces[i] == local_faces[i - 2] ||
+                           local_faces[i - 1] == local_faces[i - 2])) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "face %zu repeats a corner", i / 3);
+        }
+    }
+    return DBRG_OK;
+}
+
+// A call that hands back a dbrg_tile_mesh: `work(context, triangles, dropped)` writes triangles as indices
+// into `points`, handed back as their global ids, and (a stitch) the indices of the faces it drops.
 template <class Work>
 dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const dbrg_params* given,
                           dbrg_tile_mesh** out, const Work& work) {
@@ -179,7 +232,8 @@ dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const 
         status = check_point_count(points->count, context);
     }
     Array<uint32_t> triangles(context.memory);
-    if (status == DBRG_OK) status = work(context, triangles);
+    if (status == DBRG_OK) status = work(context, triangles, mesh->dropped);
+    if (status != DBRG_OK) mesh->dropped.release();
     if (status == DBRG_OK && !mesh->triangles.reserve(triangles.size())) status = context.fail_out_of_memory();
     if (status == DBRG_OK) {
         for (uint32_t v : triangles) mesh->triangles.push_back(ids[v]);
@@ -356,7 +410,7 @@ DBRG_API dbrg_status dbrg_reconstruct_tiled(const dbrg_points* points, uint32_t 
 
 DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint64_t* point_ids, const double* core_low,
                                            const double* core_high, const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles) {
+    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
         if (!core_low || !core_high) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "core_low or core_high is NULL");
         TileCore core;
         for (int axis = 0; axis < 3; ++axis) {
@@ -370,7 +424,7 @@ DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint
 DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uint64_t* point_ids,
                                             const uint64_t* seed_triangles, size_t seed_count, const uint8_t* fixed,
                                             const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles) {
+    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
         if (seed_count > 0 && !seed_triangles) {
             return context.fail(DBRG_ERR_INVALID_ARGUMENT, "seed_triangles is NULL with a seed_count of %zu",
                                 seed_count);
@@ -382,6 +436,90 @@ DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uin
         DBRG_PROPAGATE(grow_from_surface(points, seeds.data(), seed_count, fixed, context, surface));
         triangles.swap(surface.triangles);
         return DBRG_OK;
+    });
+}
+
+DBRG_API dbrg_status dbrg_tiling_plan(const dbrg_points* points, uint32_t tile_count, const dbrg_params* given,
+                                      dbrg_tiling* tiling, double* walls, char* message, size_t capacity) {
+    dbrg_params params;
+    dbrg_status status = read_params(given, params, message, capacity);
+    if (status != DBRG_OK) return status;
+    Context context(params);
+    if (!tiling || (tile_count > 1 && !walls)) {
+        status = context.fail(DBRG_ERR_INVALID_ARGUMENT, !tiling ? "tiling is NULL" : "walls is NULL with a tile_count of %u",
+                              tile_count);
+    } else if (tiling->struct_size < sizeof(dbrg_tiling)) {
+        status = context.fail(DBRG_ERR_INVALID_ARGUMENT, "tiling->struct_size is %zu; this library needs %zu",
+                              tiling->struct_size, sizeof(dbrg_tiling));
+    }
+    Array<double> xyz(context.memory);
+    if (status == DBRG_OK) status = copy_caller_points(points, context, xyz);
+    if (status == DBRG_OK) status = check_point_count(points->count, context);
+    TilingPlan plan(context.memory);
+    if (status == DBRG_OK) status = plan_tiling(xyz.data(), points->count, tile_count, context, plan);
+    if (status == DBRG_OK) {
+        tiling->axis = static_cast<uint32_t>(plan.axis);
+        tiling->wall_count = static_cast<uint32_t>(plan.walls.size());
+        tiling->spacing = plan.spacing;
+        tiling->halo = HALO_SPACINGS * plan.spacing;
+        tiling->seam_reach = (STRIP_SPACINGS + MARGIN_SPACINGS) * plan.spacing;
+        for (size_t w = 0; w < plan.walls.size(); ++w) walls[w] = plan.walls[w];
+    }
+    write_message(message, capacity, status == DBRG_OK ? "" : context.message());
+    return status;
+}
+
+DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t* point_ids, const uint64_t* faces,
+                                      size_t face_count, const dbrg_tiling* tiling, double wall,
+                                      const dbrg_params* given, dbrg_tile_mesh** out) {
+    return run_tile_call(points, point_ids, given, out,
+                         [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>& dropped) {
+        int axis;
+        double spacing;
+        DBRG_PROPAGATE(read_tiling(tiling, context, axis, spacing));
+        if (!(fabs(wall) < HUGE_VAL)) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "wall is %g; a finite position", wall);
+        if (face_count > 0 && !faces) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "faces is NULL with a face_count of %zu", face_count);
+        }
+        if (face_count > UINT32_MAX / 3) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "face_count is too large");
+        Array<double> xyz(context.memory), sorted(context.memory);
+        DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
+        Array<uint32_t> order(context.memory), local_faces(context.memory);
+        DBRG_PROPAGATE(sort_by_id(xyz, point_ids, faces, face_count, context, order, sorted, local_faces));
+        xyz.release();
+        Array<uint32_t> seam_dropped(context.memory);
+        DBRG_PROPAGATE(stitch_seam(sorted.data(), points->count, local_faces.data(), face_count, axis, wall, spacing,
+                                   context, seam_dropped, triangles));
+        for (uint32_t& v : triangles) v = order[v];  // back to the caller's indexing
+        if (!dropped.reserve(seam_dropped.size())) return context.fail_out_of_memory();
+        for (uint32_t f : seam_dropped) dropped.push_back(f);
+        return DBRG_OK;
+    });
+}
+
+DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_t* triangles, size_t triangle_count,
+                                        const dbrg_params* given, dbrg_mesh** out_mesh) {
+    return run_mesh_call(points, given, out_mesh, [&](Context& context, SurfaceResult& surface) {
+        Array<double> xyz(context.memory);
+        DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
+        DBRG_PROPAGATE(check_point_count(points->count, context));
+        if (triangle_count > 0 && !triangles) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangles is NULL with a triangle_count of %zu",
+                                triangle_count);
+        }
+        if (triangle_count > UINT32_MAX / 3) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangle_count is too large");
+        Array<uint32_t> mesh(context.memory);
+        if (!mesh.resize(3 * triangle_count)) return context.fail_out_of_memory();
+        for (size_t i = 0; i < 3 * triangle_count; ++i) {
+            if (triangles[i] >= points->count) {
+                return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangle %zu uses the index %u, past the %zu points",
+                                    i / 3, triangles[i], points->count);
+            }
+            mesh[i] = triangles[i];
+        }
+        context.stats.input_points = static_cast<uint32_t>(points->count);
+        context.stats.unique_points = static_cast<uint32_t>(points->count);
+        return assemble_tiles(xyz, mesh, context, surface);
     });
 }
 
@@ -399,6 +537,12 @@ DBRG_API uint64_t dbrg_tile_mesh_triangle_count(const dbrg_tile_mesh* mesh) {
 
 DBRG_API const uint64_t* dbrg_tile_mesh_triangles(const dbrg_tile_mesh* mesh) {
     return mesh && !mesh->triangles.empty() ? mesh->triangles.data() : nullptr;
+}
+
+DBRG_API const uint64_t* dbrg_tile_mesh_dropped(const dbrg_tile_mesh* mesh, uint64_t* out_count) {
+    const uint64_t count = mesh ? mesh->dropped.size() : 0;
+    if (out_count) *out_count = count;
+    return count > 0 ? mesh->dropped.data() : nullptr;
 }
 
 DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats* stats) {

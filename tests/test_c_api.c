@@ -436,7 +436,27 @@ static void test_tiles(void) {
         dbrg_tile_mesh* grown = NULL;
         CHECK(dbrg_grow_from_surface(&p, ids, triangles, (size_t)count, NULL, NULL, &grown) == DBRG_OK);
         CHECK(dbrg_tile_mesh_triangle_count(grown) > count);
+        CHECK(dbrg_tile_mesh_dropped(grown, &i) == NULL && i == 0);
         dbrg_tile_mesh_destroy(grown);
+    }
+    /* The plan, and a stitch of the owned half's faces at its wall, x = 0: faces are dropped and added. */
+    {
+        dbrg_tiling tiling;
+        double walls[2];
+        char message[128];
+        dbrg_tile_mesh* seam = NULL;
+        uint64_t dropped = 0;
+        tiling.struct_size = sizeof tiling;
+        CHECK(dbrg_tiling_plan(&p, 3, NULL, &tiling, walls, message, sizeof message) == DBRG_OK);
+        CHECK(tiling.wall_count == 2 && tiling.axis < 3 && walls[0] < walls[1] && tiling.spacing > 0);
+        CHECK(tiling.halo > tiling.seam_reach && strcmp(message, "") == 0);
+        CHECK(dbrg_tiling_plan(&p, 3, NULL, NULL, walls, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+        CHECK(strcmp(message, "tiling is NULL") == 0);
+        tiling.axis = 0;
+        CHECK(dbrg_seam_stitch(&p, ids, triangles, (size_t)count, &tiling, 0.0, NULL, &seam) == DBRG_OK);
+        CHECK(dbrg_tile_mesh_dropped(seam, &dropped) != NULL && dropped > 0 && dropped < count);
+        CHECK(dbrg_tile_mesh_triangle_count(seam) > 0);
+        dbrg_tile_mesh_destroy(seam);
     }
     dbrg_tile_mesh_destroy(tile);
     dbrg_tile_mesh_destroy(NULL);
@@ -448,6 +468,13 @@ static void test_tiles(void) {
     CHECK(dbrg_mesh_boundary_loop_count(mesh) == 0);
     stats.struct_size = sizeof stats;
     CHECK(dbrg_mesh_stats(mesh, &stats) == DBRG_OK && stats.tiles == 3);
+    /* Assembling the tiled mesh's own faces gives them back. */
+    {
+        dbrg_mesh* again = NULL;
+        CHECK(dbrg_mesh_assemble(&p, dbrg_mesh_triangles(mesh), dbrg_mesh_triangle_count(mesh), NULL, &again) == DBRG_OK);
+        CHECK(dbrg_mesh_triangle_count(again) == dbrg_mesh_triangle_count(mesh));
+        dbrg_mesh_destroy(again);
+    }
     dbrg_mesh_destroy(mesh);
     free(ids);
     free(xyz);

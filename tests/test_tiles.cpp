@@ -286,3 +286,241 @@ TEST_CASE("the tile functions check their arguments and free everything") {
     CHECK(counting.contract_violations() == 0);
     CHECK(counting.foreign_thread_calls() == 0);
 }
+
+namespace {
+
+// How the hand-run steps below feed the stitches.
+enum class WallOrder { forward, reversed };
+
+// The tiled reconstruction of `xyz` run step by step through the C API, as a driver on a cluster would:
+// dbrg_tiling_plan, dbrg_reconstruct_tile per slab, dbrg_seam_stitch for the even walls on the tiles' faces
+// and then for the odd walls on the result, dbrg_mesh_assemble. Global ids are far past 2^32. `order`
+// reverses the walls within each half and the points and faces handed to each stitch; `generous` hands
+// each stitch the points within twice its reach.
+struct Steps {
+    test::Reconstruction mesh;
+    dbrg_tiling tiling{};
+};
+
+Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order, bool generous) {
+    const uint64_t base = uint64_t(3) << 40;
+    const size_t count = xyz.size() / 3;
+    const dbrg_points all = points_of(xyz);
+    Steps steps;
+    steps.tiling.struct_size = sizeof steps.tiling;
+    std::vector<double> walls(tiles > 1 ? tiles - 1 : 0);
+    REQUIRE(dbrg_tiling_plan(&all, tiles, nullptr, &steps.tiling, walls.data(), nullptr, 0) == DBRG_OK);
+    const dbrg_tiling& tiling = steps.tiling;
+    walls.resize(tiling.wall_count);
+    const uint32_t axis = tiling.axis;
+    // Points with their coordinate on the axis in [low, high), as a tile or a stitch is handed them.
+    const auto points_between = [&](double low, double high, std::vector<double>& part, std::vector<uint64_t>& ids) {
+        for (size_t i = 0; i < count; ++i) {
+            if (xyz[3 * i + axis] < low || xyz[3 * i + axis] >= high) continue;
+            part.insert(part.end(), xyz.begin() + 3 * i, xyz.begin() + 3 * i + 3);
+            ids.push_back(base + i);
+        }
+    };
+    std::vector<uint64_t> faces;
+    for (size_t k = 0; k <= walls.size(); ++k) {
+        double low[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, high[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+        if (k > 0) low[axis] = walls[k - 1];
+        if (k < walls.size()) high[axis] = walls[k];
+        std::vector<double> part;
+        std::vector<uint64_t> ids;
+        points_between(low[axis] - tiling.halo, high[axis] + tiling.halo, part, ids);
+        const dbrg_points points = points_of(part);
+        dbrg_tile_mesh* tile = nullptr;
+        REQUIRE(dbrg_reconstruct_tile(&points, ids.data(), low, high, nullptr, &tile) == DBRG_OK);
+        const uint64_t* t = dbrg_tile_mesh_triangles(tile);
+        faces.insert(faces.end(), t, t + 3 * dbrg_tile_mesh_triangle_count(tile));
+        dbrg_tile_mesh_destroy(tile);
+    }
+    for (size_t half = 0; half < 2; ++half) {
+        std::vector<size_t> stitched;
+        for (size_t w = half; w < walls.size(); w += 2) stitched.push_back(w);
+        if (order == WallOrder::reversed) std::reverse(stitched.begin(), stitched.end());
+        std::vector<uint8_t> drop(faces.size() / 3, 0);
+        std::vector<uint64_t> added;
+        for (size_t w : stitched) {
+            // The points within reach, and the faces around them two rings deep (the contract asks for one
+            // ring around the strip's faces).
+            const double reach = (generous ? 2 : 1) * tiling.seam_reach;
+            std::vector<double> part;
+            std::vector<uint64_t> ids;
+            points_between(walls[w] - reach, walls[w] + reach, part, ids);
+            std::set<uint64_t> near(ids.begin(), ids.end()), corners = near;
+            for (int ring = 0; ring < 2; ++ring) {
+                std::set<uint64_t> next = corners;
+                for (size_t f = 0; f < faces.size(); f += 3) {
+                    if (!corners.count(faces[f]) && !corners.count(faces[f + 1]) && !corners.count(faces[f + 2])) continue;
+                    next.insert(faces.begin() + f, faces.begin() + f + 3);
+                }
+                corners = next;
+            }
+            std::vector<size_t> given;
+            for (size_t f = 0; f < faces.size(); f += 3) {
+                if (corners.count(faces[f]) && corners.count(faces[f + 1]) && corners.count(faces[f + 2])) given.push_back(f / 3);
+            }
+            if (order == WallOrder::reversed) std::reverse(given.begin(), given.end());
+            std::vector<uint64_t> given_faces;
+            for (size_t f : given) given_faces.insert(given_faces.end(), faces.begin() + 3 * f, faces.begin() + 3 * f + 3);
+            for (uint64_t id : corners) {
+                if (near.count(id)) continue;
+                part.insert(part.end(), xyz.begin() + 3 * (id - base), xyz.begin() + 3 * (id - base) + 3);
+                ids.push_back(id);
+            }
+            if (order == WallOrder::reversed) {  // the points in another order too
+                std::reverse(ids.begin(), ids.end());
+                std::vector<double> backward;
+                for (size_t i = part.size() / 3; i-- > 0;) backward.insert(backward.end(), part.begin() + 3 * i, part.begin() + 3 * i + 3);
+                part.swap(backward);
+            }
+            const dbrg_points points = points_of(part);
+            dbrg_tile_mesh* seam = nullptr;
+            REQUIRE(dbrg_seam_stitch(&points, ids.data(), given_faces.data(), given.size(), &tiling, walls[w], nullptr,
+                                     &seam) == DBRG_OK);
+            uint64_t dropped_count = 0;
+            const uint64_t* dropped = dbrg_tile_mesh_dropped(seam, &dropped_count);
+            CHECK(dropped_count > 0);
+            for (uint64_t i = 0; i < dropped_count; ++i) drop[given[dropped[i]]] = 1;
+            const uint64_t* t = dbrg_tile_mesh_triangles(seam);
+            added.insert(added.end(), t, t + 3 * dbrg_tile_mesh_triangle_count(seam));
+            dbrg_tile_mesh_destroy(seam);
+        }
+        std::vector<uint64_t> kept;
+        for (size_t f = 0; f < drop.size(); ++f) {
+            if (!drop[f]) kept.insert(kept.end(), faces.begin() + 3 * f, faces.begin() + 3 * f + 3);
+        }
+        kept.insert(kept.end(), added.begin(), added.end());
+        faces.swap(kept);
+    }
+    std::vector<uint32_t> triangles;
+    for (uint64_t id : faces) triangles.push_back(static_cast<uint32_t>(id - base));
+    dbrg_mesh* mesh = nullptr;
+    steps.mesh.status = dbrg_mesh_assemble(&all, triangles.data(), triangles.size() / 3, nullptr, &mesh);
+    const uint32_t* t = dbrg_mesh_triangles(mesh);
+    steps.mesh.triangles.assign(t, t + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
+    steps.mesh.boundary_loops = dbrg_mesh_boundary_loop_count(mesh);
+    dbrg_mesh_destroy(mesh);
+    return steps;
+}
+
+} // namespace
+
+TEST_CASE("the tiling steps run by hand give dbrg_reconstruct_tiled's faces, whatever order the walls run in") {
+    const struct {
+        samples::Shape shape;
+        size_t points;
+        uint32_t tiles;
+    } cases[] = {{samples::Shape::double_torus, 20000, 5}, {samples::Shape::saddle, 12000, 4}};
+    for (const auto& c : cases) {
+        const std::vector<double> xyz = samples::sample(c.shape, c.points);
+        const std::string name = samples::facts(c.shape).name;
+        CAPTURE(name);
+        const test::Reconstruction whole = reconstruct_tiled(xyz, c.tiles);
+        REQUIRE(whole.status == DBRG_OK);
+        const Steps forward = run_steps(xyz, c.tiles, WallOrder::forward, false);
+        REQUIRE(forward.mesh.status == DBRG_OK);
+        CHECK(forward.tiling.wall_count + 1 == whole.stats.tiles);
+        CHECK(forward.tiling.wall_count >= 3);  // both halves have walls, one with two
+        CHECK(forward.mesh.triangles == whole.triangles);
+        CHECK(forward.mesh.boundary_loops == whole.boundary_loops);
+        const Steps reversed = run_steps(xyz, c.tiles, WallOrder::reversed, true);
+        REQUIRE(reversed.mesh.status == DBRG_OK);
+        CHECK(reversed.mesh.triangles == whole.triangles);
+    }
+}
+
+TEST_CASE("the tiling steps check their arguments") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 4000);
+    const dbrg_points points = points_of(xyz);
+    std::vector<uint64_t> ids(xyz.size() / 3);
+    for (size_t i = 0; i < ids.size(); ++i) ids[i] = 10 * i;
+    char message[256];
+
+    dbrg_tiling tiling{};
+    tiling.struct_size = sizeof tiling;
+    double walls[3];
+    CHECK(dbrg_tiling_plan(&points, 4, nullptr, nullptr, walls, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(std::string(message) == "tiling is NULL");
+    CHECK(dbrg_tiling_plan(&points, 4, nullptr, &tiling, nullptr, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_tiling_plan(&points, 1, nullptr, &tiling, nullptr, message, sizeof message) == DBRG_OK);
+    CHECK(tiling.wall_count == 0);
+    CHECK(tiling.spacing > 0);
+    dbrg_tiling small = tiling;
+    small.struct_size = sizeof(size_t);
+    CHECK(dbrg_tiling_plan(&points, 4, nullptr, &small, walls, message, sizeof message) == DBRG_ERR_INVALID_ARGUMENT);
+    const dbrg_points three{xyz.data(), 3, 3 * sizeof(double), DBRG_FLOAT64};
+    CHECK(dbrg_tiling_plan(&three, 4, nullptr, &tiling, walls, message, sizeof message) == DBRG_ERR_TOO_FEW_POINTS);
+    std::vector<double> nan_xyz = xyz;
+    nan_xyz[7] = NAN;
+    const dbrg_points nan_points = points_of(nan_xyz);
+    CHECK(dbrg_tiling_plan(&nan_points, 4, nullptr, &tiling, walls, message, sizeof message) == DBRG_ERR_NON_FINITE_INPUT);
+    REQUIRE(dbrg_tiling_plan(&points, 4, nullptr, &tiling, walls, message, sizeof message) == DBRG_OK);
+    CHECK(std::string(message).empty());
+
+    // A stitch of wall 0 over a few faces of the points.
+    const uint64_t faces[] = {0, 10, 20, 30, 40, 50};
+    const auto stitch = [&](const dbrg_points* p, const uint64_t* point_ids, const uint64_t* f, size_t face_count,
+                            const dbrg_tiling* t, double wall) {
+        dbrg_tile_mesh* seam = nullptr;
+        const dbrg_status status = dbrg_seam_stitch(p, point_ids, f, face_count, t, wall, nullptr, &seam);
+        CHECK(dbrg_tile_mesh_status(seam) == status);
+        std::string text = dbrg_tile_mesh_message(seam);
+        uint64_t dropped = 7;
+        if (status != DBRG_OK) CHECK(dbrg_tile_mesh_dropped(seam, &dropped) == nullptr);
+        if (status != DBRG_OK) CHECK(dropped == 0);
+        dbrg_tile_mesh_destroy(seam);
+        return std::make_pair(status, text);
+    };
+    CHECK(stitch(&points, ids.data(), faces, 2, &tiling, 0.0).first == DBRG_OK);
+    CHECK(stitch(&points, ids.data(), faces, 2, nullptr, 0.0) ==
+          std::make_pair(DBRG_ERR_INVALID_ARGUMENT, std::string("tiling is NULL")));
+    dbrg_tiling bad = tiling;
+    bad.axis = 3;
+    CHECK(stitch(&points, ids.data(), faces, 2, &bad, 0.0).first == DBRG_ERR_INVALID_ARGUMENT);
+    bad = tiling;
+    bad.spacing = 0;
+    CHECK(stitch(&points, ids.data(), faces, 2, &bad, 0.0).first == DBRG_ERR_INVALID_ARGUMENT);
+    bad = tiling;
+    bad.struct_size = 0;
+    CHECK(stitch(&points, ids.data(), faces, 2, &bad, 0.0).first == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(stitch(&points, ids.data(), faces, 2, &tiling, NAN).first == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(stitch(&points, ids.data(), nullptr, 2, &tiling, 0.0).first == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(stitch(&points, nullptr, faces, 2, &tiling, 0.0).first == DBRG_ERR_INVALID_ARGUMENT);
+    const uint64_t unknown[] = {0, 10, 25};
+    CHECK(stitch(&points, ids.data(), unknown, 1, &tiling, 0.0) ==
+          std::make_pair(DBRG_ERR_INVALID_ARGUMENT, std::string("face 0 uses the id 25, which is not among point_ids")));
+    const uint64_t repeated[] = {0, 10, 10};
+    CHECK(stitch(&points, ids.data(), repeated, 1, &tiling, 0.0) ==
+          std::make_pair(DBRG_ERR_INVALID_ARGUMENT, std::string("face 0 repeats a corner")));
+    std::vector<uint64_t> twice = ids;
+    twice[5] = twice[4];
+    CHECK(stitch(&points, twice.data(), faces, 2, &tiling, 0.0) ==
+          std::make_pair(DBRG_ERR_INVALID_ARGUMENT, std::string("point_ids repeats the id 40")));
+
+    dbrg_mesh* mesh = nullptr;
+    const uint32_t past[] = {0, 1, static_cast<uint32_t>(ids.size())};
+    CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(std::string(dbrg_mesh_message(mesh)) ==
+          "triangle 0 uses the index " + std::to_string(ids.size()) + ", past the " + std::to_string(ids.size()) + " points");
+    dbrg_mesh_destroy(mesh);
+    CHECK(dbrg_mesh_assemble(&points, nullptr, 1, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    dbrg_mesh_destroy(mesh);
+    CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, nullptr) == DBRG_ERR_INVALID_ARGUMENT);
+
+    // The steps free everything they allocate from the caller's allocator.
+    test::CountingAllocator counting;
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.allocator = counting.get();
+    REQUIRE(dbrg_tiling_plan(&points, 4, &params, &tiling, walls, nullptr, 0) == DBRG_OK);
+    dbrg_tile_mesh* seam = nullptr;
+    REQUIRE(dbrg_seam_stitch(&points, ids.data(), faces, 2, &tiling, 0.0, &params, &seam) == DBRG_OK);
+    dbrg_tile_mesh_destroy(seam);
+    REQUIRE(dbrg_mesh_assemble(&points, past, 0, &params, &mesh) == DBRG_OK);
+    dbrg_mesh_destroy(mesh);
+    CHECK(counting.live_blocks() == 0);
+    CHECK(counting.contract_violations() == 0);
+}

@@ -477,6 +477,79 @@ DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uin
                                             const uint64_t* seed_triangles, size_t seed_count, const uint8_t* fixed,
                                             const dbrg_params* params, dbrg_tile_mesh** out);
 
+/* How a cloud is cut into slabs (EXPERIMENTAL, since 0.5.0): the plan dbrg_reconstruct_tiled follows, which
+ * a driver running the steps elsewhere (dbrg_reconstruct_tile, dbrg_seam_stitch, dbrg_mesh_assemble) gets from
+ * dbrg_tiling_plan to give the same mesh. Tile k (0-based) of wall_count + 1 has the half-open core
+ * [walls[k-1], walls[k]) on `axis` (unbounded outward for the first and the last; the other axes
+ * unbounded) and its points are those whose coordinate on `axis` lies in [low - halo, high + halo). The
+ * functions that take a dbrg_tiling read struct_size, axis and spacing; the other fields are for the caller. */
+typedef struct dbrg_tiling {
+    size_t struct_size;    /* sizeof(dbrg_tiling), set by the caller */
+    uint32_t axis;         /* 0, 1, 2: the slabs are cut across x, y or z (the box's longest side) */
+    uint32_t wall_count;   /* inner walls: the tiles number wall_count + 1 (0: run as one piece) */
+    double spacing;        /* the point spacing s: the 90th percentile of nearest-neighbour distances */
+    double halo;           /* how far a tile's points reach past its core: 8 s */
+    double seam_reach;     /* how far from a wall its stitch looks: 6 s (a strip of 3 s cut, 3 s of seeds) */
+} dbrg_tiling;
+
+/* Plans `tile_count` slabs over `points` as dbrg_reconstruct_tiled does: the spacing, the longest axis of
+ * the points' box, and walls at point-count quantiles on it, fewer where a slab would be thinner than 12
+ * spacings or points share a coordinate (a small cloud gets no walls and runs as one piece). Depends on the
+ * set of points, not their order.
+ * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (tiling or walls NULL, tiling->struct_size too small),
+ * or the status of dbrg_reconstruct for bad points (too few, too many, not finite, ...), with a message.
+ * points: the whole cloud, at most DBRG_MAX_POINTS points (an out-of-core caller plans from its own
+ *   summary and fills a dbrg_tiling itself); read during the call only.
+ * tile_count: the number of slabs wanted; 0 and 1 mean one piece.
+ * params: NULL for the defaults; only its allocator is used.
+ * tiling: receives the plan; tiling->struct_size must be set.
+ * walls: room for tile_count - 1 doubles, receiving wall_count wall positions, ascending; may be NULL
+ *   when tile_count <= 1.
+ * message: NULL, or room for `capacity` bytes receiving a NUL-terminated message ("" on success). */
+DBRG_API dbrg_status dbrg_tiling_plan(const dbrg_points* points, uint32_t tile_count, const dbrg_params* params,
+                                      dbrg_tiling* tiling, double* walls, char* message, size_t capacity);
+
+/* Stitches the seam around one wall (since 0.5.0): the faces with a corner closer than 3 spacings to the
+ * wall are cut, the faces with a corner closer than 6 spacings or at a cut face's corner are the seeds;
+ * these are oriented alike (joined across the wall by the cut faces) and the strip is regrown from the
+ * seeds as dbrg_grow_from_surface does, the seeds' corners beyond 6 spacings fixed. The result lists the
+ * faces to drop (the cut faces and the seeds) and the faces to add in their place (the regrown strip,
+ * the seeds that fitted included). It depends on the points and faces near the wall only — not on their
+ * order, nor on the points and faces further away that a caller includes — so stitches whose walls are two
+ * slabs apart change disjoint sets of faces and may run at the same time. dbrg_reconstruct_tiled stitches
+ * the walls of even index (0, 2, ...) on the tiles' faces, then those of odd index on the result: a driver
+ * that does the same gets the same mesh.
+ * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (a NULL pointer, a bad tiling or wall, a face with a repeated
+ * corner or an id not among point_ids, repeated point ids), or another status as dbrg_grow_from_surface,
+ * with a message; a strip with no volume to grow in (flat, too few points) keeps its seeds.
+ * points, point_ids: at least every point within tiling->seam_reach of the wall and every corner of
+ *   `faces`, with distinct 64-bit global ids; read during the call only.
+ * faces: 3 * face_count global ids: the faces so far (the tiles' owned faces, oriented as their tiles
+ *   grew them, after the even walls' stitches for an odd wall), at least those with a corner within
+ *   seam_reach of the wall or sharing a corner with a face that has one within 3 spacings. May be NULL
+ *   when face_count is 0.
+ * tiling: the plan (axis and spacing are used). wall: the wall's position on tiling->axis.
+ * params, out: as in dbrg_reconstruct_tile; the faces to add are dbrg_tile_mesh_triangles, the faces to
+ *   drop dbrg_tile_mesh_dropped. */
+DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t* point_ids, const uint64_t* faces,
+                                      size_t face_count, const dbrg_tiling* tiling, double wall,
+                                      const dbrg_params* params, dbrg_tile_mesh** out);
+
+/* Assembles stitched faces into one mesh as dbrg_reconstruct_tiled ends (since 0.5.0): orients them
+ * together (a walk across shared edges from the faces in sorted order; each component turned outward when
+ * closed, else as region growing seeds it), puts them into one surface in the walk's order leaving out a
+ * face that would break the manifold (counted in seam_faces_dropped), keeps the largest fan at a pinched
+ * vertex, and hands the surface over as dbrg_reconstruct does (boundary loops, statistics). Depends on the
+ * set of faces, not their order or orientation. A whole-mesh step: it holds all points and faces, with
+ * 32-bit indices.
+ * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles with a count, an index past the points), or
+ * the status of dbrg_reconstruct for bad points.
+ * points: the whole cloud; read during the call only.
+ * triangles: 3 * triangle_count indices into `points`. May be NULL when triangle_count is 0.
+ * params, out_mesh: as in dbrg_reconstruct. */
+DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_t* triangles, size_t triangle_count,
+                                        const dbrg_params* params, dbrg_mesh** out_mesh);
+
 /* Frees a tile result. NULL is accepted and ignored. */
 DBRG_API void dbrg_tile_mesh_destroy(dbrg_tile_mesh* mesh);
 
@@ -493,6 +566,11 @@ DBRG_API uint64_t dbrg_tile_mesh_triangle_count(const dbrg_tile_mesh* mesh);
  * (a tile's piece of a closed surface is open: orient the pieces together after stitching). NULL when
  * there are none. */
 DBRG_API const uint64_t* dbrg_tile_mesh_triangles(const dbrg_tile_mesh* mesh);
+
+/* Returns the faces a dbrg_seam_stitch call drops, as ascending indices into its `faces` (since 0.5.0), and
+ * writes their number to *out_count. NULL and 0 for other results, NULL or failed ones. out_count may be
+ * NULL. */
+DBRG_API const uint64_t* dbrg_tile_mesh_dropped(const dbrg_tile_mesh* mesh, uint64_t* out_count);
 
 /* Copies the statistics of the call, as dbrg_mesh_stats. */
 DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats* stats);

@@ -129,119 +129,78 @@ dbrg_status run_tile(const Array<double>& xyz, int axis, const Array<double>& wa
 // Where a point lies from the wall being stitched.
 enum Zone : uint8_t { FAR = 0, BAND = 1, STRIP = 2 };
 
-// Cuts the seam strip around `wall` out of `mesh` and regrows it from the surface around it (docs/tiles.md,
-// steps 2 and 3); `mesh` is left with the faces outside the strip and the regrown ones.
-dbrg_status stitch_strip(const Array<double>& xyz, int axis, double wall, double spacing, Context& context,
-                         Array<uint32_t>& mesh) {
-    const size_t count = xyz.size() / 3;
+// The faces of `mesh` (3 global indices each) a stitch of `wall` needs, and the points they and the wall
+// need, as the stitch_seam contract says: the faces with a corner within reach of the wall or sharing a
+// corner with a face that has one in the strip. `faces` receives their indices in `mesh`, `points` the
+// points' global indices, ascending.
+dbrg_status gather_seam(const Array<double>& xyz, const Array<uint32_t>& mesh, int axis, double wall, double spacing,
+                        Context& context, Array<uint32_t>& faces, Array<uint32_t>& points) {
+    const size_t count = xyz.size() / 3, face_count = mesh.size() / 3;
     const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
-    // The band: the points within reach of the wall, and the corners of the faces cut (a long face can
-    // reach further where the sampling is uneven). The seeds: the kept faces with a corner in the band. The
-    // strip's points: the band and the seeds' other corners, which are fixed (their fans are complete
-    // outside, far from the faces cut), numbered in the caller's order.
     Array<uint8_t> zone(context.memory);
     if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) {
         const double d = fabs(xyz[3 * i + axis] - wall);
         zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
     }
-    const auto is_cut = [&](const uint32_t* t) {
-        return zone[t[0]] == STRIP || zone[t[1]] == STRIP || zone[t[2]] == STRIP;
-    };
-    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+    // The corners of faces reaching into the strip join the band (marked 3: they widen nothing further).
+    const uint8_t REACHED = 3;
+    for (size_t f = 0; f < face_count; ++f) {
         const uint32_t* t = mesh.data() + 3 * f;
-        if (!is_cut(t)) continue;
-        for (int i = 0; i < 3; ++i) zone[t[i]] = zone[t[i]] == STRIP ? STRIP : BAND;
+        if (zone[t[0]] != STRIP && zone[t[1]] != STRIP && zone[t[2]] != STRIP) continue;
+        for (int i = 0; i < 3; ++i) zone[t[i]] = zone[t[i]] == FAR ? REACHED : zone[t[i]];
     }
-    const auto is_seed = [&](const uint32_t* t) {
-        return !is_cut(t) && (zone[t[0]] != FAR || zone[t[1]] != FAR || zone[t[2]] != FAR);
-    };
-    Array<uint32_t> local(context.memory);
-    if (!local.resize(count, NOT_IN_STRIP)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) local[i] = zone[i] != FAR ? 0 : NOT_IN_STRIP;
-    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+    Array<uint8_t> wanted(context.memory);
+    if (!wanted.resize(count, 0)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) wanted[i] = zone[i] == STRIP || zone[i] == BAND;
+    for (size_t f = 0; f < face_count; ++f) {
         const uint32_t* t = mesh.data() + 3 * f;
-        if (!is_seed(t)) continue;
-        for (int i = 0; i < 3; ++i) local[t[i]] = 0;
+        if (zone[t[0]] == FAR && zone[t[1]] == FAR && zone[t[2]] == FAR) continue;
+        if (!faces.push_back(static_cast<uint32_t>(f))) return context.fail_out_of_memory();
+        for (int i = 0; i < 3; ++i) wanted[t[i]] = 1;
     }
-    Array<uint32_t> strip_index(context.memory);
-    Array<double> strip_xyz(context.memory);
-    Array<uint8_t> fixed(context.memory);
     for (size_t i = 0; i < count; ++i) {
-        if (local[i] == NOT_IN_STRIP) continue;
-        local[i] = static_cast<uint32_t>(strip_index.size());
-        if (!strip_index.push_back(static_cast<uint32_t>(i)) || !fixed.push_back(zone[i] == FAR ? 1 : 0)) {
-            return context.fail_out_of_memory();
-        }
-        for (int a = 0; a < 3; ++a) {
-            if (!strip_xyz.push_back(xyz[3 * i + a])) return context.fail_out_of_memory();
-        }
+        if (wanted[i] && !points.push_back(static_cast<uint32_t>(i))) return context.fail_out_of_memory();
     }
-    // Faces outside the strip stay in `mesh`; the seeds go to the stitch.
-    Array<uint32_t> seeds(context.memory);
-    size_t kept = 0;
-    for (size_t f = 0; f < mesh.size() / 3; ++f) {
-        const uint32_t* t = mesh.data() + 3 * f;
-        if (is_cut(t)) continue;
-        if (is_seed(t)) {
-            for (int i = 0; i < 3; ++i) {
-                if (!seeds.push_back(local[t[i]])) return context.fail_out_of_memory();
-            }
-            continue;
-        }
-        for (int i = 0; i < 3; ++i) mesh[3 * kept + i] = t[i];
-        ++kept;
-    }
-    mesh.shrink(3 * kept);
-    local.release();
-    zone.release();
-
-    Context stitch_context(piece_params(context.params));
-    stitch_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
-    SurfaceResult grown(stitch_context.memory);
-    const dbrg_points strip_points = double_points(strip_xyz);
-    const dbrg_status status = grow_from_surface(&strip_points, seeds.data(), seeds.size() / 3, fixed.data(),
-                                                 stitch_context, grown);
-    const Array<uint32_t>* strip_faces = &grown.triangles;
-    if (status == DBRG_ERR_TOO_FEW_POINTS || status == DBRG_ERR_DEGENERATE_INPUT) {
-        strip_faces = &seeds;  // no volume to grow in: the seeds stay as they were
-    } else if (status != DBRG_OK) {
-        return context.fail(status, "seam stitch: %s", stitch_context.message());
-    } else {
-        add_piece_stats(stitch_context.stats, context.stats);
-    }
-    context.stats.tile_peak_bytes = std::max(context.stats.tile_peak_bytes, stitch_context.memory.peak_bytes());
-    if (!mesh.reserve(mesh.size() + strip_faces->size())) return context.fail_out_of_memory();
-    for (uint32_t v : *strip_faces) mesh.push_back(strip_index[v]);
     return DBRG_OK;
 }
 
-// Builds S from the stitched faces in the orientation walk's order, skipping those that would break the
-// manifold, and hands it over as the single call does.
-dbrg_status assemble(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result) {
-    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
-    const uint32_t count = static_cast<uint32_t>(xyz.size() / 3);
-    Surface surface(context.memory);
-    if (!surface.reset(count) || !surface.reserve_faces(mesh.size() / 3)) return context.fail_out_of_memory();
-    for (size_t f = 0; f < mesh.size() / 3; ++f) {
-        const uint32_t a = mesh[3 * f], b = mesh[3 * f + 1], c = mesh[3 * f + 2];
-        const FaceCheck check = surface.check_face(a, b, c);
-        if (check.verdict != FaceCheck::valid) {
-            ++context.stats.seam_faces_dropped;
-            continue;
-        }
-        if (surface.add_face(a, b, c, NO_TET, check) == NO_FACE) return context.fail_out_of_memory();
+// Stitches `wall` on `mesh` (global indices) through stitch_seam: appends the indices in `mesh` of the faces
+// it drops to `dropped` and the faces it adds, in global indices, to `added`.
+dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, int axis, double wall, double spacing,
+                        Context& context, Array<uint32_t>& dropped, Array<uint32_t>& added) {
+    Array<uint32_t> faces(context.memory), points(context.memory);
+    DBRG_PROPAGATE(gather_seam(xyz, mesh, axis, wall, spacing, context, faces, points));
+    // The gathered points and faces renumbered locally, in ascending global index as stitch_seam wants.
+    Array<uint32_t> local(context.memory);
+    Array<double> seam_xyz(context.memory);
+    Array<uint32_t> seam_faces(context.memory);
+    if (!local.resize(xyz.size() / 3, 0) || !seam_xyz.reserve(3 * points.size()) ||
+        !seam_faces.reserve(3 * faces.size())) {
+        return context.fail_out_of_memory();
     }
-    mesh.release();
-    Array<uint32_t> removed(context.memory);
-    if (!surface.remove_pinches(removed)) return context.fail_out_of_memory();
-    context.stats.seam_faces_dropped += static_cast<uint32_t>(removed.size());
-    // The caller's points as the output stage expects them: every point its own vertex.
-    ConditionedPoints identity(context.memory);
-    identity.coordinates.swap(xyz);
-    if (!identity.input_index.resize(count)) return context.fail_out_of_memory();
-    for (uint32_t v = 0; v < count; ++v) identity.input_index[v] = v;
-    return emit_surface(surface, identity, context, result);
+    for (size_t k = 0; k < points.size(); ++k) {
+        local[points[k]] = static_cast<uint32_t>(k);
+        for (int a = 0; a < 3; ++a) seam_xyz.push_back(xyz[3 * size_t(points[k]) + a]);
+    }
+    for (uint32_t f : faces) {
+        for (int i = 0; i < 3; ++i) seam_faces.push_back(local[mesh[3 * size_t(f) + i]]);
+    }
+    local.release();
+    Context stitch_context(piece_params(context.params));
+    stitch_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
+    Array<uint32_t> seam_dropped(stitch_context.memory), seam_added(stitch_context.memory);
+    const dbrg_status status = stitch_seam(seam_xyz.data(), points.size(), seam_faces.data(), faces.size(), axis,
+                                           wall, spacing, stitch_context, seam_dropped, seam_added);
+    if (status != DBRG_OK) return context.fail(status, "seam stitch: %s", stitch_context.message());
+    add_piece_stats(stitch_context.stats, context.stats);
+    context.stats.tile_peak_bytes = std::max(context.stats.tile_peak_bytes, stitch_context.memory.peak_bytes());
+    if (!dropped.reserve(dropped.size() + seam_dropped.size()) || !added.reserve(added.size() + seam_added.size())) {
+        return context.fail_out_of_memory();
+    }
+    for (uint32_t f : seam_dropped) dropped.push_back(faces[f]);
+    for (uint32_t v : seam_added) added.push_back(points[v]);
+    return DBRG_OK;
 }
 
 } // namespace
@@ -274,6 +233,125 @@ dbrg_status reconstruct_tile(const dbrg_points* points, const TileCore& core, Co
     return DBRG_OK;
 }
 
+dbrg_status plan_tiling(const double* xyz, size_t count, uint32_t tile_count, Context& context, TilingPlan& plan) {
+    plan.walls.clear();
+    DBRG_PROPAGATE(estimate_spacing(xyz, count, context, plan.spacing));
+    plan.axis = longest_axis(xyz, count);
+    if (tile_count <= 1 || !(plan.spacing > 0)) return DBRG_OK;
+    return slab_walls(xyz, count, plan.axis, tile_count, MIN_SLAB_SPACINGS * plan.spacing, context, plan.walls);
+}
+
+dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, size_t face_count, int axis,
+                        double wall, double spacing, Context& context, Array<uint32_t>& dropped,
+                        Array<uint32_t>& added) {
+    const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
+    // The band: the points within reach of the wall, and the corners of the faces cut (a long face can
+    // reach further where the sampling is uneven). The seeds: the other faces with a corner in the band.
+    // The strip's points: the band and the seeds' other corners, which are fixed (their fans are complete
+    // outside, far from the faces cut), numbered in the given (global id) order.
+    Array<uint8_t> zone(context.memory);
+    if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) {
+        const double d = fabs(xyz[3 * i + axis] - wall);
+        zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
+    }
+    const auto is_cut = [&](const uint32_t* t) {
+        return zone[t[0]] == STRIP || zone[t[1]] == STRIP || zone[t[2]] == STRIP;
+    };
+    for (size_t f = 0; f < face_count; ++f) {
+        const uint32_t* t = faces + 3 * f;
+        if (!is_cut(t)) continue;
+        for (int i = 0; i < 3; ++i) zone[t[i]] = zone[t[i]] == STRIP ? STRIP : BAND;
+    }
+    const auto is_seed = [&](const uint32_t* t) {
+        return !is_cut(t) && (zone[t[0]] != FAR || zone[t[1]] != FAR || zone[t[2]] != FAR);
+    };
+    // The faces the stitch replaces, oriented alike: the tiles grew theirs each in its own orientation, and
+    // the cut faces join the two sides where the tiles meet.
+    Array<uint32_t> touched(context.memory);
+    for (size_t f = 0; f < face_count; ++f) {
+        const uint32_t* t = faces + 3 * f;
+        if (!is_cut(t) && !is_seed(t)) continue;
+        if (!dropped.push_back(static_cast<uint32_t>(f))) return context.fail_out_of_memory();
+        for (int i = 0; i < 3; ++i) {
+            if (!touched.push_back(t[i])) return context.fail_out_of_memory();
+        }
+    }
+    DBRG_PROPAGATE(orient_triangles(touched, xyz, false, context));
+    Array<uint32_t> local(context.memory);
+    if (!local.resize(count, NOT_IN_STRIP)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) local[i] = zone[i] != FAR ? 0 : NOT_IN_STRIP;
+    for (size_t f = 0; f < touched.size() / 3; ++f) {
+        const uint32_t* t = touched.data() + 3 * f;
+        if (!is_seed(t)) continue;
+        for (int i = 0; i < 3; ++i) local[t[i]] = 0;
+    }
+    Array<uint32_t> strip_index(context.memory);
+    Array<double> strip_xyz(context.memory);
+    Array<uint8_t> fixed(context.memory);
+    for (size_t i = 0; i < count; ++i) {
+        if (local[i] == NOT_IN_STRIP) continue;
+        local[i] = static_cast<uint32_t>(strip_index.size());
+        if (!strip_index.push_back(static_cast<uint32_t>(i)) || !fixed.push_back(zone[i] == FAR ? 1 : 0)) {
+            return context.fail_out_of_memory();
+        }
+        for (int a = 0; a < 3; ++a) {
+            if (!strip_xyz.push_back(xyz[3 * i + a])) return context.fail_out_of_memory();
+        }
+    }
+    Array<uint32_t> seeds(context.memory);
+    for (size_t f = 0; f < touched.size() / 3; ++f) {
+        const uint32_t* t = touched.data() + 3 * f;
+        if (!is_seed(t)) continue;
+        for (int i = 0; i < 3; ++i) {
+            if (!seeds.push_back(local[t[i]])) return context.fail_out_of_memory();
+        }
+    }
+    touched.release();
+    local.release();
+    zone.release();
+
+    SurfaceResult grown(context.memory);
+    const dbrg_points strip_points = double_points(strip_xyz);
+    const dbrg_status status = grow_from_surface(&strip_points, seeds.data(), seeds.size() / 3, fixed.data(),
+                                                 context, grown);
+    const Array<uint32_t>* strip_faces = &grown.triangles;
+    if (status == DBRG_ERR_TOO_FEW_POINTS || status == DBRG_ERR_DEGENERATE_INPUT) {
+        strip_faces = &seeds;  // no volume to grow in: the seeds stay as they were
+    } else if (status != DBRG_OK) {
+        return status;
+    }
+    if (!added.reserve(added.size() + strip_faces->size())) return context.fail_out_of_memory();
+    for (uint32_t v : *strip_faces) added.push_back(strip_index[v]);
+    return DBRG_OK;
+}
+
+dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result) {
+    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), true, context));
+    const uint32_t count = static_cast<uint32_t>(xyz.size() / 3);
+    Surface surface(context.memory);
+    if (!surface.reset(count) || !surface.reserve_faces(mesh.size() / 3)) return context.fail_out_of_memory();
+    for (size_t f = 0; f < mesh.size() / 3; ++f) {
+        const uint32_t a = mesh[3 * f], b = mesh[3 * f + 1], c = mesh[3 * f + 2];
+        const FaceCheck check = surface.check_face(a, b, c);
+        if (check.verdict != FaceCheck::valid) {
+            ++context.stats.seam_faces_dropped;
+            continue;
+        }
+        if (surface.add_face(a, b, c, NO_TET, check) == NO_FACE) return context.fail_out_of_memory();
+    }
+    mesh.release();
+    Array<uint32_t> removed(context.memory);
+    if (!surface.remove_pinches(removed)) return context.fail_out_of_memory();
+    context.stats.seam_faces_dropped += static_cast<uint32_t>(removed.size());
+    // The caller's points as the output stage expects them: every point its own vertex.
+    ConditionedPoints identity(context.memory);
+    identity.coordinates.swap(xyz);
+    if (!identity.input_index.resize(count)) return context.fail_out_of_memory();
+    for (uint32_t v = 0; v < count; ++v) identity.input_index[v] = v;
+    return emit_surface(surface, identity, context, result);
+}
+
 dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Context& context, SurfaceResult& result) {
     context.stats.tiles = 1;
     if (tile_count <= 1) return reconstruct_surface(points, context, result);
@@ -282,15 +360,13 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
     DBRG_PROPAGATE(check_point_count(points->count, context));
     const size_t count = points->count;
-    double spacing;
-    DBRG_PROPAGATE(estimate_spacing(xyz.data(), count, context, spacing));
-    const int axis = longest_axis(xyz.data(), count);
-    Array<double> walls(context.memory);
-    DBRG_PROPAGATE(slab_walls(xyz.data(), count, axis, tile_count, MIN_SLAB_SPACINGS * spacing, context, walls));
-    if (walls.empty() || !(spacing > 0)) {
+    TilingPlan plan(context.memory);
+    DBRG_PROPAGATE(plan_tiling(xyz.data(), count, tile_count, context, plan));
+    if (plan.walls.empty()) {
         xyz.release();
         return reconstruct_surface(points, context, result);
     }
+    const Array<double>& walls = plan.walls;
     context.stats.tiles = static_cast<uint32_t>(walls.size() + 1);
     context.stats.input_points = static_cast<uint32_t>(count);
     context.stats.unique_points = static_cast<uint32_t>(count);
@@ -298,17 +374,31 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     Array<uint32_t> mesh(context.memory);
     for (uint32_t k = 0; k < context.stats.tiles; ++k) {
         DBRG_PROPAGATE(context.report(DBRG_STAGE_GROW, double(k) / context.stats.tiles));
-        DBRG_PROPAGATE(run_tile(xyz, axis, walls, k, HALO_SPACINGS * spacing, context, mesh));
+        DBRG_PROPAGATE(run_tile(xyz, plan.axis, walls, k, HALO_SPACINGS * plan.spacing, context, mesh));
     }
-    DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, 0.0));
-    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), context));
-    // One wall at a time, so that the stitch holds one strip: slabs are at least as wide as two bands, so
-    // a strip meets only the faces its neighbours' stitches regrew at its edge, as kept surface.
-    for (size_t w = 0; w < walls.size(); ++w) {
-        DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, double(w) / walls.size()));
-        DBRG_PROPAGATE(stitch_strip(xyz, axis, walls[w], spacing, context, mesh));
+    // The even walls, then the odd ones: walls of one half are two slabs apart, farther than a stitch
+    // reaches, so each stitch of a half sees the faces as they were before the half began, as on a cluster.
+    for (size_t half = 0; half < 2; ++half) {
+        Array<uint32_t> dropped(context.memory), added(context.memory);
+        for (size_t w = half; w < walls.size(); w += 2) {
+            DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, double(w / 2 + half * ((walls.size() + 1) / 2)) / walls.size()));
+            DBRG_PROPAGATE(stitch_wall(xyz, mesh, plan.axis, walls[w], plan.spacing, context, dropped, added));
+        }
+        Array<uint8_t> drop(context.memory);
+        if (!drop.resize(mesh.size() / 3, 0) || !mesh.reserve(mesh.size() + added.size())) {
+            return context.fail_out_of_memory();
+        }
+        for (uint32_t f : dropped) drop[f] = 1;
+        size_t kept = 0;
+        for (size_t f = 0; f < mesh.size() / 3; ++f) {
+            if (drop[f]) continue;
+            for (int i = 0; i < 3; ++i) mesh[3 * kept + i] = mesh[3 * f + i];
+            ++kept;
+        }
+        mesh.shrink(3 * kept);
+        for (uint32_t v : added) mesh.push_back(v);
     }
-    DBRG_PROPAGATE(assemble(xyz, mesh, context, result));
+    DBRG_PROPAGATE(assemble_tiles(xyz, mesh, context, result));
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }
 

@@ -28,17 +28,48 @@ constexpr double MARGIN_SPACINGS = 3.0;  // the band beyond it whose faces seed 
 // The thinnest slab: one with no interior between the strips of its walls holds nothing of its own.
 constexpr double MIN_SLAB_SPACINGS = 2 * (STRIP_SPACINGS + MARGIN_SPACINGS);
 
+// How a cloud is cut: slabs along `axis` between `walls` (ascending), measured in the point spacing.
+struct TilingPlan {
+    explicit TilingPlan(Memory& memory) : walls(memory) {}
+    int axis = 0;
+    double spacing = 0;
+    Array<double> walls;
+};
+
+// Plans `tile_count` slabs over the `count` points `xyz`: the spacing (estimate_spacing), the longest axis
+// of their box, and walls at point-count quantiles, fewer where a slab would be thinner than
+// MIN_SLAB_SPACINGS or points share a coordinate. No walls when the cloud is to run as one piece.
+dbrg_status plan_tiling(const double* xyz, size_t count, uint32_t tile_count, Context& context, TilingPlan& plan);
+
 // Reconstructs the surface of `points` (a tile's core and halo) and keeps the triangles the core owns
 // (TileCore::owns). Writes them to `owned`, 3 indices into `points` each. Fills context.stats as
 // reconstruct_surface does.
 dbrg_status reconstruct_tile(const dbrg_points* points, const TileCore& core, Context& context,
                              Array<uint32_t>& owned);
 
-// Reconstructs `points` as `tile_count` slabs along the longest axis of their box, cut at point-count
-// quantiles, then stitches them (docs/tiles.md); fewer slabs where they would be thinner than
-// MIN_SLAB_SPACINGS. One tile is reconstruct_surface itself. The result is in
-// the caller's indexing; context.stats is filled for the whole mesh (the tiles' own figures summed where
-// they are counts and times), tiles, seam_faces_dropped and tile_peak_bytes included.
+// Stitches the seam around `wall` (docs/tiles.md, steps 2 and 3) from the `count` points `xyz` near it,
+// numbered in ascending global id, and `faces` (3 indices each, oriented as their tiles grew them): cuts the
+// faces with a corner in the strip, orients the cut faces and the seeds around them together, and regrows
+// the strip from the seeds. Writes to `dropped` the faces cut or used as seeds (ascending indices into
+// `faces`) and to `added` the faces that replace them (the regrown strip, seeds included). The result
+// depends on the sets of points and faces near the wall only: not on the order of `faces`, nor on points
+// and faces further away. Fills context.stats as grow_from_surface does.
+dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, size_t face_count, int axis,
+                        double wall, double spacing, Context& context, Array<uint32_t>& dropped,
+                        Array<uint32_t>& added);
+
+// Puts the stitched faces (3 indices into the points `xyz` each) into one surface: oriented together,
+// taken in the orientation walk's order, a face that would break the manifold left out and counted in
+// seam_faces_dropped, pinched vertices keeping their largest fan; hands it over as the single call does.
+// Needs the whole mesh. Takes `xyz` and `mesh` over.
+dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result);
+
+// Reconstructs `points` as `tile_count` slabs (plan_tiling), one after another, then stitches the even
+// walls (the first, third, ...) and then the odd ones, each stitch on the faces as they were before its
+// half began, as a cluster would run them at once, and assembles the result (docs/tiles.md). One tile is
+// reconstruct_surface itself. The result is in the caller's indexing; context.stats is filled for the
+// whole mesh (the tiles' own figures summed where they are counts and times), tiles, seam_faces_dropped
+// and tile_peak_bytes included.
 dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Context& context, SurfaceResult& result);
 
 } // namespace dbrg

@@ -49,7 +49,7 @@ bool faces_up(const Triangle& t, bool flip, const double* xyz) {
 
 } // namespace
 
-dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, Context& context) {
+dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, bool turn_up, Context& context) {
     Array<Triangle> faces(context.memory);
     if (!canonical_order(triangles, faces)) return context.fail_out_of_memory();
     const uint32_t count = static_cast<uint32_t>(faces.size());
@@ -109,6 +109,7 @@ dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, Cont
                 order.push_back(g);
             }
         }
+        if (!turn_up) continue;
         // The component's seed face: at its highest point, the smallest circumradius.
         uint32_t top = faces[order[first]].v[0];
         for (size_t k = first; k < order.size(); ++k) {

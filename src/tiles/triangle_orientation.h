@@ -17,7 +17,9 @@ namespace dbrg {
 // or +x, then +y, for a vertical face). The faces come back in the walk's order — each after the first of
 // its component shares an edge with an earlier one, so a surface built in that order has few pinched
 // vertices on the way — which depends on the set of triangles only. `xyz` holds the points' coordinates.
-// Returns DBRG_OK or DBRG_ERR_OUT_OF_MEMORY.
-dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, Context& context);
+// With `turn_up` false the components are not turned: each keeps the orientation its first face (in the
+// sorted order) was given, so faces already oriented alike stay as they are. Returns DBRG_OK or
+// DBRG_ERR_OUT_OF_MEMORY.
+dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, bool turn_up, Context& context);
 
 } // namespace dbrg

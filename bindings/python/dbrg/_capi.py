@@ -168,6 +168,17 @@ class dbrg_stats(ctypes.Structure):
     ]
 
 
+class dbrg_tiling(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", c_size_t),
+        ("axis", c_uint32),
+        ("wall_count", c_uint32),
+        ("spacing", c_double),
+        ("halo", c_double),
+        ("seam_reach", c_double),
+    ]
+
+
 # Opaque handles.
 class dbrg_mesh(ctypes.Structure):
     pass
@@ -214,11 +225,17 @@ FUNCTIONS = {
                                        POINTER(tile_mesh_p)]),
     "dbrg_grow_from_surface": (c_enum, [POINTER(dbrg_points), u64_p, u64_p, c_size_t, POINTER(ctypes.c_uint8),
                                         POINTER(dbrg_params), POINTER(tile_mesh_p)]),
+    "dbrg_tiling_plan": (c_enum, [POINTER(dbrg_points), c_uint32, POINTER(dbrg_params), POINTER(dbrg_tiling), f64_p,
+                                  c_char_p, c_size_t]),
+    "dbrg_seam_stitch": (c_enum, [POINTER(dbrg_points), u64_p, u64_p, c_size_t, POINTER(dbrg_tiling), c_double,
+                                  POINTER(dbrg_params), POINTER(tile_mesh_p)]),
+    "dbrg_mesh_assemble": (c_enum, [POINTER(dbrg_points), u32_p, c_size_t, POINTER(dbrg_params), POINTER(mesh_p)]),
     "dbrg_tile_mesh_destroy": (None, [tile_mesh_p]),
     "dbrg_tile_mesh_status": (c_enum, [tile_mesh_p]),
     "dbrg_tile_mesh_message": (c_char_p, [tile_mesh_p]),
     "dbrg_tile_mesh_triangle_count": (c_uint64, [tile_mesh_p]),
     "dbrg_tile_mesh_triangles": (u64_p, [tile_mesh_p]),
+    "dbrg_tile_mesh_dropped": (u64_p, [tile_mesh_p, u64_p]),
     "dbrg_tile_mesh_stats": (c_enum, [tile_mesh_p, POINTER(dbrg_stats)]),
     "dbrg_tetrahedralize": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_params), POINTER(tets_p)]),
     "dbrg_tetrahedralization_destroy": (None, [tets_p]),

@@ -156,13 +156,25 @@ pub struct dbrg_stats {
     pub tile_peak_bytes: usize,
 }
 
+/// How a cloud is cut into slabs (`dbrg_tiling_plan`). EXPERIMENTAL.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct dbrg_tiling {
+    pub struct_size: usize,
+    pub axis: u32,
+    pub wall_count: u32,
+    pub spacing: f64,
+    pub halo: f64,
+    pub seam_reach: f64,
+}
+
 /// Opaque result of `dbrg_reconstruct`.
 #[repr(C)]
 pub struct dbrg_mesh {
     _private: [u8; 0],
 }
 
-/// Opaque result of `dbrg_reconstruct_tile` and `dbrg_grow_from_surface`.
+/// Opaque result of `dbrg_reconstruct_tile`, `dbrg_grow_from_surface` and `dbrg_seam_stitch`.
 #[repr(C)]
 pub struct dbrg_tile_mesh {
     _private: [u8; 0],
@@ -225,11 +237,38 @@ extern "C" {
         params: *const dbrg_params,
         out: *mut *mut dbrg_tile_mesh,
     ) -> dbrg_status;
+    pub fn dbrg_tiling_plan(
+        points: *const dbrg_points,
+        tile_count: u32,
+        params: *const dbrg_params,
+        tiling: *mut dbrg_tiling,
+        walls: *mut f64,
+        message: *mut c_char,
+        message_capacity: usize,
+    ) -> dbrg_status;
+    pub fn dbrg_seam_stitch(
+        points: *const dbrg_points,
+        point_ids: *const u64,
+        faces: *const u64,
+        face_count: usize,
+        tiling: *const dbrg_tiling,
+        wall: f64,
+        params: *const dbrg_params,
+        out: *mut *mut dbrg_tile_mesh,
+    ) -> dbrg_status;
+    pub fn dbrg_mesh_assemble(
+        points: *const dbrg_points,
+        triangles: *const u32,
+        triangle_count: usize,
+        params: *const dbrg_params,
+        out_mesh: *mut *mut dbrg_mesh,
+    ) -> dbrg_status;
     pub fn dbrg_tile_mesh_destroy(mesh: *mut dbrg_tile_mesh);
     pub fn dbrg_tile_mesh_status(mesh: *const dbrg_tile_mesh) -> dbrg_status;
     pub fn dbrg_tile_mesh_message(mesh: *const dbrg_tile_mesh) -> *const c_char;
     pub fn dbrg_tile_mesh_triangle_count(mesh: *const dbrg_tile_mesh) -> u64;
     pub fn dbrg_tile_mesh_triangles(mesh: *const dbrg_tile_mesh) -> *const u64;
+    pub fn dbrg_tile_mesh_dropped(mesh: *const dbrg_tile_mesh, out_count: *mut u64) -> *const u64;
     pub fn dbrg_tile_mesh_stats(mesh: *const dbrg_tile_mesh, stats: *mut dbrg_stats) -> dbrg_status;
 
     pub fn dbrg_tetrahedralize(

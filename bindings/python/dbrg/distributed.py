@@ -1,0 +1,252 @@
+"""dbrg.distributed: tiled reconstruction on a Dask cluster (EXPERIMENTAL; docs/tiles.md, "Running on Dask").
+
+    import dbrg.distributed
+    mesh = dbrg.distributed.reconstruct(points, tiles=8)                      # a LocalCluster of 2 processes
+    mesh = dbrg.distributed.reconstruct(points, tiles=64, scheduler="tcp://host:8786")
+
+The driver runs the steps of the C library's tiled loop (dbrg_reconstruct_tiled) as Dask tasks and gives the
+same mesh: the plan (here), one task per slab (dbrg_reconstruct_tile), one task per wall
+(dbrg_seam_stitch: the even walls, then the odd ones), and the assembly (here, dbrg_mesh_assemble). Every
+task is a pure function of the points and faces it is sent, so a task whose worker fails or is killed is
+run again and the mesh does not change; the mesh depends on the tiling, never on the number of workers or
+the order in which tasks finish. Each task is sent its own points only, inside the task (not scattered:
+scattered data dies with its worker, a task's arguments do not). The client holds the whole cloud and
+the whole mesh: the plan and the assembly are whole-cloud steps.
+
+Needs dask and distributed (Debian: python3-dask python3-distributed) on the client and the workers, and
+this package importable on the workers.
+"""
+
+import ctypes
+
+import numpy as np
+
+from . import _capi
+from . import _error, _mesh, _params, _point_array, library, reconstruct as _reconstruct_one
+
+__all__ = ["reconstruct", "plan", "Plan"]
+
+_OK = _capi.ENUMS["dbrg_status"]["DBRG_OK"]
+# What a task is given of the caller's options: the surface parameters, one thread (a worker is one task).
+_OPTIONS = ("sliver_angle", "boundary_factor", "boundary_mean", "fill_holes", "max_hole_edges", "max_components",
+            "backend", "cleaning")
+
+
+class Plan:
+    """How the cloud is cut (dbrg_tiling_plan): slabs across `axis` between `walls`, each tile's points
+    reaching `halo` past its core, each stitch looking `seam_reach` either side of its wall."""
+
+    def __init__(self, tiling, walls):
+        self.tiling = tiling
+        self.axis = tiling.axis
+        self.walls = list(walls)
+        self.spacing = tiling.spacing
+        self.halo = tiling.halo
+        self.seam_reach = tiling.seam_reach
+
+    def core(self, k):
+        """The half-open core [low, high) of tile k, 3 bounds each."""
+        low, high = [-np.inf] * 3, [np.inf] * 3
+        if k > 0:
+            low[self.axis] = self.walls[k - 1]
+        if k < len(self.walls):
+            high[self.axis] = self.walls[k]
+        return low, high
+
+
+def plan(points, tiles):
+    """The plan dbrg_reconstruct_tiled follows for `points` cut into `tiles` slabs (fewer where slabs would
+    be thinner than 12 point spacings: no walls at all for a small cloud)."""
+    lib = library()
+    array, view = _point_array(points)
+    tiling = _capi.dbrg_tiling()
+    tiling.struct_size = ctypes.sizeof(tiling)
+    walls = (ctypes.c_double * max(tiles - 1, 1))()
+    message = ctypes.create_string_buffer(512)
+    status = lib.dbrg_tiling_plan(ctypes.byref(view), tiles, None, ctypes.byref(tiling), walls, message, len(message))
+    del array
+    if status != _OK:
+        raise _error(lib, status, message.value)
+    return Plan(tiling, walls[:tiling.wall_count])
+
+
+def _view(xyz):
+    xyz = np.ascontiguousarray(xyz, dtype=np.float64)
+    return xyz, _capi.dbrg_points(xyz.ctypes.data, len(xyz), 24, _capi.ENUMS["dbrg_scalar_type"]["DBRG_FLOAT64"])
+
+
+def _tile_result(lib, status, handle):
+    """The triangles of a dbrg_tile_mesh as an (M, 3) uint64 array of global ids; raises on failure."""
+    if status != _OK:
+        raise _error(lib, status, lib.dbrg_tile_mesh_message(handle) if handle else b"")
+    count = lib.dbrg_tile_mesh_triangle_count(handle)
+    pointer = lib.dbrg_tile_mesh_triangles(handle)
+    if count == 0:
+        return np.empty((0, 3), dtype=np.uint64)
+    return np.ctypeslib.as_array(pointer, shape=(count, 3)).copy()
+
+
+def tile_task(xyz, ids, low, high, options):
+    """A tile: dbrg_reconstruct_tile on its points (core and halo) with their global ids. Returns the
+    owned faces as an (M, 3) uint64 array of global ids."""
+    lib = library()
+    xyz, view = _view(xyz)
+    ids = np.ascontiguousarray(ids, dtype=np.uint64)
+    params = _params(lib, threads=1, **options)
+    handle = _capi.tile_mesh_p()
+    core_low, core_high = (ctypes.c_double * 3)(*low), (ctypes.c_double * 3)(*high)
+    status = lib.dbrg_reconstruct_tile(ctypes.byref(view), ids.ctypes.data_as(_capi.u64_p), core_low, core_high,
+                                       ctypes.byref(params), ctypes.byref(handle))
+    try:
+        return _tile_result(lib, status, handle)
+    finally:
+        lib.dbrg_tile_mesh_destroy(handle)
+
+
+def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
+    """A wall's stitch: dbrg_seam_stitch on the points and faces near the wall (global ids). Returns
+    (dropped, added): the indices into `faces` of the faces to drop, and the (K, 3) uint64 faces to add."""
+    lib = library()
+    xyz, view = _view(xyz)
+    ids = np.ascontiguousarray(ids, dtype=np.uint64)
+    faces = np.ascontiguousarray(faces, dtype=np.uint64)
+    tiling = _capi.dbrg_tiling()
+    tiling.struct_size = ctypes.sizeof(tiling)
+    tiling.axis = axis
+    tiling.spacing = spacing
+    params = _params(lib, threads=1, **options)
+    handle = _capi.tile_mesh_p()
+    status = lib.dbrg_seam_stitch(ctypes.byref(view), ids.ctypes.data_as(_capi.u64_p),
+                                  faces.ctypes.data_as(_capi.u64_p), len(faces), ctypes.byref(tiling), wall,
+                                  ctypes.byref(params), ctypes.byref(handle))
+    try:
+        added = _tile_result(lib, status, handle)
+        count = ctypes.c_uint64()
+        pointer = lib.dbrg_tile_mesh_dropped(handle, ctypes.byref(count))
+        dropped = np.ctypeslib.as_array(pointer, shape=(count.value,)).astype(np.int64) if count.value else \
+            np.empty(0, dtype=np.int64)
+        return dropped, added
+    finally:
+        lib.dbrg_tile_mesh_destroy(handle)
+
+
+def _seam_input(xyz, faces, axis, wall, reach):
+    """What a stitch of `wall` is sent, as dbrg_seam_stitch asks: the points within `reach` of the wall,
+    the faces touching them or sharing a corner with such a face, and those faces' corners. Returns
+    (indices of the faces in `faces`, global ids of the points)."""
+    near = np.abs(xyz[:, axis] - wall) < reach
+    marked = near.copy()
+    marked[faces[near[faces].any(axis=1)].ravel()] = True
+    given = np.flatnonzero(marked[faces].any(axis=1))
+    wanted = near.copy()
+    wanted[faces[given].ravel()] = True
+    return given, np.flatnonzero(wanted).astype(np.uint64)
+
+
+def _open_client(client, scheduler, n_workers, memory_limit):
+    """The client to run on, and what to close afterwards (what this call started)."""
+    from distributed import Client, LocalCluster
+    if client is not None:
+        return client, []
+    if scheduler is not None:
+        client = Client(scheduler)
+        return client, [client]
+    cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
+                           dashboard_address=":0")
+    client = Client(cluster)
+    return client, [client, cluster]
+
+
+def _wait(client, futures, progress):
+    if progress:
+        from distributed import progress as progress_bar
+        progress_bar(futures)
+    return client.gather(futures)
+
+
+def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memory_limit="1GiB", progress=True,
+                **options):
+    """Reconstructs `points` as `tiles` slabs on a Dask cluster and returns a dbrg.Mesh, with the faces of
+    dbrg_reconstruct_tiled(points, tiles) (the C loop, `dbrg reconstruct --tiles N`).
+
+    points: an (N, 3) array-like, as for dbrg.reconstruct (read as float64).
+    tiles: slabs wanted; fewer where slabs would be thinner than 12 point spacings. A cloud that gets no
+        walls runs as one dbrg.reconstruct call here, as the C loop does.
+    client: a distributed.Client to run on; else `scheduler`, a scheduler's address ("tcp://host:8786");
+        else a LocalCluster of `n_workers` worker processes of one thread and `memory_limit` each, closed
+        on return.
+    progress: show Dask's progress bar for the tiles and for each half of the stitches.
+    options: the surface parameters of dbrg.reconstruct (sliver_angle, boundary_factor, boundary_mean,
+        fill_holes, max_hole_edges, max_components, backend, cleaning); every task uses one thread.
+    Mesh.stats holds the assembly's figures, with `tiles` the number of slabs run. Raises ImportError when
+    distributed cannot be imported, and dbrg.Error subclasses as dbrg.reconstruct does.
+    """
+    unknown = set(options) - set(_OPTIONS)
+    if unknown:
+        raise TypeError("reconstruct() got unexpected keyword arguments %s" % ", ".join(sorted(unknown)))
+    try:
+        import distributed  # noqa: F401  (fail early, before any work)
+    except ImportError as error:
+        raise ImportError("dbrg.distributed needs dask and distributed (Debian: python3-dask python3-distributed; "
+                          "pip: distributed): %s" % error) from None
+    lib = library()
+    array = np.ascontiguousarray(np.asarray(points), dtype=np.float64)
+    cut = plan(array, tiles)
+    if not cut.walls:
+        return _reconstruct_one(points, **options)
+    client, opened = _open_client(client, scheduler, n_workers, memory_limit)
+    try:
+        faces = _tiles(client, array, cut, options, progress)
+        for half in (0, 1):
+            faces = _stitch_half(client, array, faces, cut, cut.walls[half::2], options, progress)
+    finally:
+        for thing in opened:
+            thing.close()
+    return _assemble(lib, points, array, faces, len(cut.walls) + 1)
+
+
+def _tiles(client, array, cut, options, progress):
+    """Every tile's owned faces, concatenated in tile order: an (F, 3) uint64 array of point indices."""
+    coordinate = array[:, cut.axis]
+    futures = []
+    for k in range(len(cut.walls) + 1):
+        low, high = cut.core(k)
+        inside = np.flatnonzero((coordinate >= low[cut.axis] - cut.halo) & (coordinate < high[cut.axis] + cut.halo))
+        futures.append(client.submit(tile_task, array[inside], inside.astype(np.uint64), low, high, options))
+    return np.concatenate(_wait(client, futures, progress))
+
+
+def _stitch_half(client, array, faces, cut, walls, options, progress):
+    """The faces after stitching `walls` (a half: two slabs apart, so their stitches touch disjoint faces),
+    each stitch on `faces` as they are."""
+    index = faces.astype(np.int64)
+    futures, given_faces = [], []
+    for wall in walls:
+        given, ids = _seam_input(array, index, cut.axis, wall, cut.seam_reach)
+        given_faces.append(given)
+        futures.append(client.submit(stitch_task, array[ids.astype(np.int64)], ids, faces[given], cut.axis,
+                                     cut.spacing, wall, options))
+    results = _wait(client, futures, progress)
+    keep = np.ones(len(faces), dtype=bool)
+    added = []
+    for given, (dropped, grown) in zip(given_faces, results):
+        keep[given[dropped]] = False
+        added.append(grown)
+    return np.concatenate([faces[keep]] + added)
+
+
+def _assemble(lib, points, array, faces, tiles):
+    """dbrg_mesh_assemble on the whole cloud and the stitched faces: the dbrg.Mesh."""
+    xyz, view = _view(array)
+    triangles = np.ascontiguousarray(faces, dtype=np.uint32)
+    handle = _capi.mesh_p()
+    status = lib.dbrg_mesh_assemble(ctypes.byref(view), triangles.ctypes.data_as(_capi.u32_p), len(triangles),
+                                    None, ctypes.byref(handle))
+    try:
+        if status != _OK:
+            raise _error(lib, status, lib.dbrg_mesh_message(handle) if handle else b"")
+        mesh = _mesh(lib, handle, np.asarray(points))
+        mesh.stats["tiles"] = tiles
+        return mesh
+    finally:
+        lib.dbrg_mesh_destroy(handle)

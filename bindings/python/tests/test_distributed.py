@@ -1,0 +1,158 @@
+"""dbrg.distributed on local Dask clusters: the faces of the C library's tiled loop, whatever the number of
+workers, the order tasks finish in, or a worker killed in the middle of the run."""
+
+import ctypes
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import numpy as np
+
+import dbrg
+from dbrg import _capi
+
+try:
+    import distributed
+    from distributed import Client, LocalCluster, WorkerPlugin
+    import dbrg.distributed as dbrg_distributed
+except ImportError as error:  # the tests below skip, saying why
+    distributed = None
+    WorkerPlugin = object
+    MISSING = "dask.distributed cannot be imported (%s; Debian: python3-dask python3-distributed)" % error
+
+TILES = 4  # 3 walls on the torus below: two stitched at once, then one
+
+
+def torus(count, seed=1):
+    rng = np.random.default_rng(seed)
+    u, v = rng.uniform(0, 2 * np.pi, count), rng.uniform(0, 2 * np.pi, count)
+    ring = 1.0 + 0.35 * np.cos(v)
+    return np.stack([ring * np.cos(u), ring * np.sin(u), 0.35 * np.sin(v)], axis=1)
+
+
+def c_loop(points, tiles):
+    """The triangles of dbrg_reconstruct_tiled: the loop the driver must agree with."""
+    lib = dbrg.library()
+    array, view = dbrg._point_array(points)
+    handle = _capi.mesh_p()
+    status = lib.dbrg_reconstruct_tiled(ctypes.byref(view), tiles, None, ctypes.byref(handle))
+    try:
+        assert status == 0, lib.dbrg_mesh_message(handle)
+        return dbrg._mesh(lib, handle, array)
+    finally:
+        lib.dbrg_mesh_destroy(handle)
+
+
+def local_cluster(workers):
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit="1GiB",
+                           dashboard_address=":0")
+    return cluster, Client(cluster)
+
+
+class HoldFirstTile(WorkerPlugin):
+    """Holds the first tile each worker starts for half a second, so later tiles finish before it."""
+
+    def setup(self, worker):
+        self.held = False
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish == "executing" and str(key).startswith("tile_task") and not self.held:
+            self.held = True
+            time.sleep(0.5)
+
+
+class KillOnFirstTile(WorkerPlugin):
+    """Kills the worker process that starts the first tile task of the run (the marker file says it was done)."""
+
+    def __init__(self, marker):
+        self.marker = marker
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish == "executing" and str(key).startswith("tile_task") and not os.path.exists(self.marker):
+            open(self.marker, "w").close()
+            os._exit(1)
+
+
+@unittest.skipIf(distributed is None, "skipped: " + (MISSING if distributed is None else ""))
+class Distributed(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.points = torus(6000)
+        cls.reference = c_loop(cls.points, TILES)
+        cls.cluster, cls.client = local_cluster(2)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.cluster.close()
+
+    def run_on(self, client):
+        return dbrg_distributed.reconstruct(self.points, tiles=TILES, client=client, progress=False)
+
+    def test_the_faces_of_the_c_loop(self):
+        self.assertEqual(len(dbrg_distributed.plan(self.points, TILES).walls), 3)
+        mesh = self.run_on(self.client)
+        self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
+        self.assertEqual(len(mesh.boundary_loops), len(self.reference.boundary_loops))
+        self.assertEqual(mesh.stats["tiles"], TILES)
+        self.assertEqual(mesh.stats["seam_faces_dropped"], self.reference.stats["seam_faces_dropped"])
+
+    def test_one_worker_gives_what_two_give(self):
+        cluster, client = local_cluster(1)
+        try:
+            mesh = self.run_on(client)
+        finally:
+            client.close()
+            cluster.close()
+        self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
+
+    def test_tiles_finishing_in_another_order(self):
+        cluster, client = local_cluster(2)
+        try:
+            client.register_worker_plugin(HoldFirstTile())
+            with distributed.get_task_stream(client) as stream:
+                mesh = self.run_on(client)
+        finally:
+            client.close()
+            cluster.close()
+        tiles = [t for t in stream.data if t["key"].startswith("tile_task")]
+        started = [t["key"] for t in sorted(tiles, key=lambda t: t["startstops"][0]["start"])]
+        finished = [t["key"] for t in sorted(tiles, key=lambda t: t["startstops"][-1]["stop"])]
+        self.assertNotEqual(started, finished)  # the held tiles finished after tiles started later
+        self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
+
+    def test_a_worker_killed_in_the_middle_of_a_tile(self):
+        with tempfile.TemporaryDirectory() as folder:
+            marker = os.path.join(folder, "killed")
+            cluster, client = local_cluster(2)
+            try:
+                client.register_worker_plugin(KillOnFirstTile(marker))
+                mesh = self.run_on(client)
+            finally:
+                client.close()
+                cluster.close()
+            self.assertTrue(os.path.exists(marker))  # a worker did die running a tile
+        self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
+
+    def test_the_command_line(self):
+        with tempfile.TemporaryDirectory() as folder:
+            source = os.path.join(folder, "torus.xyz")
+            np.savetxt(source, self.points, fmt="%.17g")
+            meshes = {}
+            for name, command in (
+                    ("program", [os.environ["DBRG_PROGRAM"], "reconstruct", source, "--tiles", str(TILES)]),
+                    ("dask", [sys.executable, "-m", "dbrg", "reconstruct", source, "--tiles", str(TILES),
+                              "--distributed", "--workers", "1"])):
+                output = os.path.join(folder, name + ".obj")
+                subprocess.run(command + ["-o", output, "-q", "--no-normals"], check=True, timeout=120)
+                with open(output) as mesh:
+                    meshes[name] = [line for line in mesh if line.startswith("f ")]
+        self.assertGreater(len(meshes["dask"]), 0)
+        self.assertEqual(meshes["dask"], meshes["program"])
+
+
+if __name__ == "__main__":
+    unittest.main()
