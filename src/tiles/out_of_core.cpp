@@ -146,7 +146,16 @@ public:
         report_.points = summary_.count;
         if (summary_.count < 4) return IoStatus::failure(input_ + ": " + std::to_string(summary_.count) + " points; a surface needs at least 4");
         spacing_ = report_.spacing;
-        const uint32_t asked = options_.tiles ? options_.tiles : tiles_for_budget(summary_.count, options_.max_memory_bytes);
+        const double length = summary_.high[summary_.axis] - summary_.low[summary_.axis];
+        const double halo_share = length > 0 ? 2 * HALO_SPACINGS * spacing_ / length : 1;
+        const uint32_t asked = options_.tiles ? options_.tiles : tiles_for_budget(summary_.count, options_.max_memory_bytes, halo_share);
+        if (asked == 0) {
+            return IoStatus::failure(input_ + ": " + std::to_string(options_.max_memory_bytes >> 20) +
+                                     " MiB is too little for this cloud: a slab's halo alone holds about " +
+                                     std::to_string(uint64_t(halo_share * double(summary_.count))) + " of its points, " +
+                                     std::to_string(uint64_t(halo_share * double(summary_.count) * TILE_BYTES_PER_POINT + BASE_BYTES) >> 20) +
+                                     " MiB");
+        }
         if (spacing_ > 0) walls_ = sample_walls(summary_, asked, MIN_SLAB_SPACINGS * spacing_);
         tiles_ = static_cast<uint32_t>(walls_.size() + 1);
         report_.tiles = tiles_;
@@ -527,10 +536,13 @@ private:
 
 } // namespace
 
-uint32_t tiles_for_budget(uint64_t count, uint64_t max_memory_bytes) {
-    if (max_memory_bytes == 0) return 1;
-    const double tiles = std::ceil(double(count) * TILE_BYTES_PER_POINT / double(max_memory_bytes));
-    return tiles >= double(UINT32_MAX) ? UINT32_MAX : std::max<uint32_t>(1, uint32_t(tiles));
+uint32_t tiles_for_budget(uint64_t count, uint64_t max_memory_bytes, double halo_share) {
+    // A slab of 1/T of the points and its halo: count (1/T + halo_share) points of TILE_BYTES_PER_POINT.
+    const double share = (double(max_memory_bytes) - BASE_BYTES) / (double(count) * TILE_BYTES_PER_POINT);
+    if (share >= 1) return 1;
+    if (!(share > halo_share)) return 0;
+    const double tiles = std::ceil(1 / (share - halo_share));
+    return tiles >= double(UINT32_MAX) ? 0 : uint32_t(tiles);
 }
 
 IoStatus reconstruct_file(const std::string& input, const std::string& output, const Options& options, Report& report) {

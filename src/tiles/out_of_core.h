@@ -13,9 +13,10 @@
 
 namespace dbrg::out_of_core {
 
-// Bytes one tile holds at its peak per point it reconstructs (its core and halo), with the loop's own
-// arrays; measured as tile_peak_bytes over the tile's points on generated surfaces (docs/tiles.md).
-constexpr double TILE_BYTES_PER_POINT = 450;
+// Resident bytes a tile needs at its peak per point it reconstructs (its core and halo), the loop's own
+// arrays included, and the program's own before any tile; measured on generated surfaces (docs/tiles.md).
+constexpr double TILE_BYTES_PER_POINT = 800;
+constexpr double BASE_BYTES = 16 << 20;
 
 struct Options {
     // The memory the run may use; the number of slabs follows from it (TILE_BYTES_PER_POINT).
@@ -44,7 +45,9 @@ struct Report {
 io::IoStatus reconstruct_file(const std::string& input, const std::string& output, const Options& options,
                               Report& report);
 
-// The number of slabs for `count` points within `max_memory_bytes`.
-uint32_t tiles_for_budget(uint64_t count, uint64_t max_memory_bytes);
+// The number of slabs for `count` points within `max_memory_bytes`, each slab holding its share of the
+// points and a halo of `halo_share` of them (twice the halo over the box's length along the slabs' axis,
+// as for points spread evenly along it); 0 when no number of slabs fits.
+uint32_t tiles_for_budget(uint64_t count, uint64_t max_memory_bytes, double halo_share);
 
 } // namespace dbrg::out_of_core
