@@ -126,6 +126,23 @@ TEST_CASE("points stream from binary and ascii PLY and XYZ as read_mesh reads th
     REQUIRE(reader.open(ascii));
     CHECK(reader.declared_count() == 2u);
     CHECK(read_all(reader, 1) == std::vector<double>{1.5, 2.5, 3.5, -1, 4.25, 0.5});
+    // Past 2^32 points, which a mesh's 32-bit indices refuse, the count is taken (and here found to lie).
+    const std::string huge = folder.file("huge.ply");
+    {
+        std::FILE* file = std::fopen(huge.c_str(), "wb");
+        REQUIRE(file);
+        std::fputs("ply\nformat binary_little_endian 1.0\nelement vertex 5000000000\nproperty float x\n"
+                   "property float y\nproperty float z\nend_header\n", file);
+        std::fclose(file);
+    }
+    REQUIRE(reader.open(huge));
+    CHECK(reader.declared_count() == 5000000000u);
+    std::vector<double> xyz_batch(3);
+    size_t count = 0;
+    const io::IoStatus status = reader.read(xyz_batch.data(), 1, count);
+    CHECK(status.message.find("declares 5000000000 items, more than the rest of the file can hold") != std::string::npos);
+    io::MeshData refused;
+    CHECK(io::read_mesh(huge, refused).message.find("at most 4294967294") != std::string::npos);
 }
 
 TEST_CASE("streamed passes give the whole cloud's count, box and spacing, whatever the order of the points") {

@@ -84,7 +84,8 @@ struct Header {
     Encoding encoding = Encoding::ascii;
     std::vector<Element> elements;
     size_t header_lines = 0;  // lines up to and including end_header
-    uint32_t vertex_count = 0;
+    uint64_t vertex_count = 0;  // more than 32 bits only for the points streamed (ply_points)
+    size_t vertex_line = 0;     // the line of the vertex element
     bool has_vertex_element = false;
     bool has_normals = false;  // the vertex element has nx, ny and nz
 };
@@ -158,12 +159,9 @@ IoStatus parse_element(TokenSplitter& tokens, Header& header, size_t line) {
     element.count = static_cast<uint64_t>(count);
     if (element.kind == ElementKind::vertex) {
         if (header.has_vertex_element) return header_error(line, "a second 'vertex' element");
-        // Indices are 32-bit; UINT32_MAX stays free as a sentinel for users of the mesh.
-        if (element.count >= std::numeric_limits<uint32_t>::max()) {
-            return header_error(line, "element vertex declares " + std::to_string(element.count) + " vertices; at most 4294967294 are supported");
-        }
         header.has_vertex_element = true;
-        header.vertex_count = static_cast<uint32_t>(element.count);
+        header.vertex_count = element.count;
+        header.vertex_line = line;
     }
     header.elements.push_back(std::move(element));
     return IoStatus::success();
@@ -445,7 +443,7 @@ void minimum_item_size(const Element& element, size_t& bytes, size_t& tokens) {
 template <class Source>
 IoStatus read_body(const Header& header, Source& source, MeshData& out) {
     auto fail = [&](const std::string& what) { return IoStatus::failure("PLY " + source.place() + ": " + what); };
-    CornerDecoder corners(header.vertex_count, out.triangles);
+    CornerDecoder corners(static_cast<uint32_t>(header.vertex_count), out.triangles);
     std::string error;
     std::vector<double> face_values(out.face_properties.size(), 0.0);  // the current face's, by Property::carried
     for (const Element& element : header.elements) {
@@ -626,6 +624,11 @@ IoStatus read_ply(ByteSource& source, MeshData& out) {
     Header header;
     IoStatus status = parse_header(source, header);
     if (!status) return status;
+    // A mesh's indices are 32-bit; UINT32_MAX stays free as a sentinel for users of the mesh.
+    if (header.vertex_count >= std::numeric_limits<uint32_t>::max()) {
+        return header_error(header.vertex_line, "element vertex declares " + std::to_string(header.vertex_count) +
+                                                    " vertices; at most 4294967294 are supported");
+    }
     for (Element& element : header.elements) {
         for (Property& property : element.properties) {
             if (property.role != Role::carry) continue;
