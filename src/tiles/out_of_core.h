@@ -35,7 +35,6 @@ struct Report {
     size_t tile_peak_bytes = 0;    // the most one tile or one stitch held through the library's allocator
     uint64_t orientation_conflicts = 0;  // seam edges whose pieces could not be turned to agree
     double spacing = 0;
-    dbrg_stats sums{};             // the tiles' and stitches' counts and times, summed
 };
 
 // Reconstructs the points of `input` (.ply or .xyz/.pts) into `output` (binary .ply: every input point a
