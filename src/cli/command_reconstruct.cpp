@@ -220,10 +220,14 @@ int reconstruct_out_of_core(const ParsedArgs& args, const dbrg_params& params, c
     out_of_core::Options options;
     options.max_memory_bytes = budget;
     options.params = params;
+    ProgressBar bar(!args.has("--quiet"));
+    options.params.progress = ProgressBar::callback;
+    options.params.progress_user = &bar;
     out_of_core::Report report;
     const double start = seconds_now();
     const io::IoStatus status = out_of_core::reconstruct_file(input, output, options, report);
     const double seconds = seconds_now() - start;
+    bar.finish();
     if (!status) return report_error(EXIT_FAILED, status.message);
     if (args.has("--stats-json")) {
         io::JsonObject json;

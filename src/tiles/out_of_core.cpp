@@ -136,11 +136,18 @@ bool faces_up(const double* a, const double* b, const double* c) {
 class Run {
 public:
     Run(const std::string& input, const std::string& output, const Options& options, Report& report)
-        : input_(input), output_(output), options_(options), report_(report) {}
+        : input_(input), output_(output), options_(options), report_(report), piece_params_(options.params) {
+        // The pieces run quietly; the loop reports its own progress.
+        piece_params_.progress = nullptr;
+        piece_params_.snapshot = nullptr;
+        piece_params_.snapshot_count = 0;
+    }
 
     IoStatus run() {
+        progress(DBRG_STAGE_VALIDATE, 0.0);
         IoStatus status = reader_.open(input_);
         if (status) status = summarize(reader_, summary_);
+        progress(DBRG_STAGE_VALIDATE, 0.3);
         if (status) status = stream_spacing(reader_, summary_, report_.spacing);
         if (!status) return status;
         report_.points = summary_.count;
@@ -148,6 +155,7 @@ public:
         spacing_ = report_.spacing;
         const double length = summary_.high[summary_.axis] - summary_.low[summary_.axis];
         const double halo_share = length > 0 ? 2 * HALO_SPACINGS * spacing_ / length : 1;
+        progress(DBRG_STAGE_VALIDATE, 0.7);
         const uint32_t asked = options_.tiles ? options_.tiles : tiles_for_budget(summary_.count, options_.max_memory_bytes, halo_share);
         if (asked == 0) {
             return IoStatus::failure(input_ + ": " + std::to_string(options_.max_memory_bytes >> 20) +
@@ -165,11 +173,19 @@ public:
         std::vector<std::string> buckets;
         for (uint32_t k = 0; k < tiles_; ++k) buckets.push_back(bucket(k));
         status = write_buckets(reader_, summary_.axis, walls_, HALO_SPACINGS * spacing_, buckets);
-        for (uint32_t k = 0; status && k < tiles_; ++k) status = run_tile(k);
-        // The even walls, then the odd ones, as dbrg_reconstruct_tiled stitches them.
-        for (size_t parity : {0, 1}) {
-            for (size_t w = parity; status && w < walls_.size(); w += 2) status = stitch(w);
+        for (uint32_t k = 0; status && k < tiles_; ++k) {
+            progress(DBRG_STAGE_GROW, double(k) / tiles_);
+            status = run_tile(k);
         }
+        // The even walls, then the odd ones, as dbrg_reconstruct_tiled stitches them.
+        size_t stitched = 0;
+        for (size_t parity : {0, 1}) {
+            for (size_t w = parity; status && w < walls_.size(); w += 2) {
+                progress(DBRG_STAGE_FILL_HOLES, double(stitched++) / walls_.size());
+                status = stitch(w);
+            }
+        }
+        progress(DBRG_STAGE_OUTPUT, 0.0);
         std::vector<PieceFacts> pieces;
         std::vector<std::vector<BorderEdge>> borders(tiles_);
         for (uint32_t k = 0; status && k < tiles_; ++k) status = orient_slab(k, pieces, borders[k]);
@@ -180,6 +196,12 @@ public:
     }
 
 private:
+    // The passes over the file as validation, the slabs as growing, the walls as hole filling and the
+    // orientation and output as output, as dbrg_reconstruct_tiled reports them. A cancel is not offered.
+    void progress(dbrg_stage stage, double fraction) const {
+        if (options_.params.progress) options_.params.progress(options_.params.progress_user, stage, fraction);
+    }
+
     std::string bucket(uint32_t k) const { return folder_.file("tile-" + std::to_string(k) + ".points"); }
     std::string faces(uint32_t k) const { return folder_.file("tile-" + std::to_string(k) + ".faces"); }
     std::string piece_file(uint32_t k) const { return folder_.file("tile-" + std::to_string(k) + ".pieces"); }
@@ -204,7 +226,7 @@ private:
             if (k > 0) low[summary_.axis] = walls_[k - 1];
             if (k < walls_.size()) high[summary_.axis] = walls_[k];
             dbrg_tile_mesh* mesh = nullptr;
-            const dbrg_status result = dbrg_reconstruct_tile(&view, ids.data(), low, high, &options_.params, &mesh);
+            const dbrg_status result = dbrg_reconstruct_tile(&view, ids.data(), low, high, &piece_params_, &mesh);
             if (result != DBRG_OK) {
                 status = library_failure("tile " + std::to_string(k + 1) + " of " + std::to_string(tiles_), result, mesh);
                 dbrg_tile_mesh_destroy(mesh);
@@ -288,7 +310,7 @@ private:
         const dbrg_points view{xyz.data(), ids.size(), 3 * sizeof(double), DBRG_FLOAT64};
         dbrg_tile_mesh* mesh = nullptr;
         const dbrg_status result = dbrg_seam_stitch(&view, ids.data(), selected.data(), origin.size(), &tiling, wall,
-                                                    &options_.params, &mesh);
+                                                    &piece_params_, &mesh);
         if (result != DBRG_OK) {
             const IoStatus status = library_failure("wall " + std::to_string(w + 1) + " of " + std::to_string(walls_.size()), result, mesh);
             dbrg_tile_mesh_destroy(mesh);
@@ -526,6 +548,7 @@ private:
     std::string input_, output_;
     const Options& options_;
     Report& report_;
+    dbrg_params piece_params_;
     io::PointReader reader_;
     CloudSummary summary_;
     double spacing_ = 0;

@@ -23,7 +23,10 @@ struct Options {
     uint64_t max_memory_bytes = 0;
     // The number of slabs asked instead, when not 0 (tests; fewer run where slabs would be too thin).
     uint32_t tiles = 0;
-    dbrg_params params;  // progress and snapshots are not used
+    // The pieces' parameters; its progress callback hears the run's steps (files read as validation, slabs
+    // as growing, walls as hole filling, orientation and output as output) and cannot cancel; snapshots
+    // are not taken.
+    dbrg_params params;
 };
 
 struct Report {
