@@ -7,8 +7,9 @@ process's faces the out-of-core mesh has. Not a test: run it by hand on a releas
     python3 tests/bench/bench_out_of_core.py [--dbrg build/src/cli/dbrg] [--points 5000000] [--max-memory 1.5G]
         [--workdir DIR] [--keep] [--skip-single]
 
-The cloud: `--points` points on a sphere of radius 1 by the Fibonacci lattice (evenly spaced, no two alike,
-deterministic), written as binary PLY with float coordinates (12 bytes a point). The single process needs
+The cloud: `--points` points on a bumpy sphere (radius 1 +- 0.1, directions from the Fibonacci lattice: about
+evenly spaced, no two alike, deterministic; not on one sphere, whose cospherical points give a degenerate,
+unusually small tetrahedralization), written as binary PLY with float coordinates (12 bytes a point). The single process needs
 about 375 bytes a point at its peak, so past about 50M points on this machine (24 GiB) only the out-of-core
 run fits: --skip-single leaves it out.
 """
@@ -26,7 +27,7 @@ GOLDEN_ANGLE = np.pi * (3 - np.sqrt(5))
 
 
 def write_cloud(path, count, chunk=1 << 22):
-    """The Fibonacci lattice of `count` points on the unit sphere, as binary little-endian PLY floats."""
+    """`count` points on a bumpy sphere, as binary little-endian PLY floats."""
     with open(path, "wb") as out:
         out.write(f"ply\nformat binary_little_endian 1.0\nelement vertex {count}\n"
                   "property float x\nproperty float y\nproperty float z\nend_header\n".encode())
@@ -35,7 +36,9 @@ def write_cloud(path, count, chunk=1 << 22):
             z = 1 - (2 * i + 1) / count
             radius = np.sqrt(1 - z * z)
             angle = GOLDEN_ANGLE * i
-            xyz = np.stack([radius * np.cos(angle), radius * np.sin(angle), z], axis=1).astype("<f4")
+            direction = np.stack([radius * np.cos(angle), radius * np.sin(angle), z], axis=1)
+            bump = 1 + 0.1 * np.sin(7 * direction[:, 0]) * np.cos(5 * direction[:, 1]) * np.sin(3 * direction[:, 2] + 1)
+            xyz = (direction * bump[:, None]).astype("<f4")
             out.write(xyz.tobytes())
 
 
@@ -106,7 +109,7 @@ def main():
     # The tiles' files go beside the output: a folder on disk, not a tmpfs /tmp, keeps them out of memory.
     workdir = args.workdir or tempfile.mkdtemp(prefix="dbrg_bench_out_of_core_", dir=".")
     os.makedirs(workdir, exist_ok=True)
-    cloud = os.path.join(workdir, f"sphere_{args.points}.ply")
+    cloud = os.path.join(workdir, f"bumpy_sphere_{args.points}.ply")
     if not os.path.exists(cloud):
         write_cloud(cloud, args.points)
     print(f"cloud: {args.points} points, {os.path.getsize(cloud) / 2**20:.0f} MiB ({cloud})")
