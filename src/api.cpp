@@ -211,10 +211,11 @@ dbrg_status sort_by_id(const Array<double>& xyz, const uint64_t* ids, const uint
 }
 
 // A call that hands back a dbrg_tile_mesh: `work(context, triangles, dropped)` writes triangles as indices
-// into `points`, handed back as their global ids, and (a stitch) the indices of the faces it drops.
+// into `points`, handed back as their global ids, and (a stitch) the indices of the faces it drops. A
+// surface needs 4 points; a stitch (`any_count`) takes fewer, and has nothing to grow then.
 template <class Work>
 dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const dbrg_params* given,
-                          dbrg_tile_mesh** out, const Work& work) {
+                          dbrg_tile_mesh** out, bool any_count, const Work& work) {
     if (!out) return DBRG_ERR_INVALID_ARGUMENT;
     dbrg_params params;
     dbrg_tile_mesh* mesh = *out = open_result<dbrg_tile_mesh>(given, params);
@@ -226,10 +227,10 @@ dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const 
     mesh->memory.count_in(&meter);
     const double start = seconds_now();
     dbrg_status status = DBRG_OK;
-    if (!points || !ids) {
+    if (!points || (!ids && points->count > 0)) {
         status = context.fail(DBRG_ERR_INVALID_ARGUMENT, !points ? "points is NULL" : "point_ids is NULL");
     } else {
-        status = check_point_count(points->count, context);
+        status = any_count ? check_not_too_many_points(points->count, context) : check_point_count(points->count, context);
     }
     Array<uint32_t> triangles(context.memory);
     if (status == DBRG_OK) status = work(context, triangles, mesh->dropped);
@@ -410,7 +411,7 @@ DBRG_API dbrg_status dbrg_reconstruct_tiled(const dbrg_points* points, uint32_t 
 
 DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint64_t* point_ids, const double* core_low,
                                            const double* core_high, const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
+    return run_tile_call(points, point_ids, given, out, false, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
         if (!core_low || !core_high) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "core_low or core_high is NULL");
         TileCore core;
         for (int axis = 0; axis < 3; ++axis) {
@@ -424,7 +425,7 @@ DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint
 DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uint64_t* point_ids,
                                             const uint64_t* seed_triangles, size_t seed_count, const uint8_t* fixed,
                                             const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
+    return run_tile_call(points, point_ids, given, out, false, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
         if (seed_count > 0 && !seed_triangles) {
             return context.fail(DBRG_ERR_INVALID_ARGUMENT, "seed_triangles is NULL with a seed_count of %zu",
                                 seed_count);
@@ -472,7 +473,7 @@ DBRG_API dbrg_status dbrg_tiling_plan(const dbrg_points* points, uint32_t tile_c
 DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t* point_ids, const uint64_t* faces,
                                       size_t face_count, const dbrg_tiling* tiling, double wall,
                                       const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out,
+    return run_tile_call(points, point_ids, given, out, true,
                          [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>& dropped) {
         int axis;
         double spacing;
@@ -483,7 +484,8 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
         }
         if (face_count > UINT32_MAX / 3) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "face_count is too large");
         Array<double> xyz(context.memory), sorted(context.memory);
-        DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
+        const dbrg_status read = copy_caller_points(points, context, xyz);
+        if (read != DBRG_OK && read != DBRG_ERR_TOO_FEW_POINTS) return read;  // fewer than 4 are copied, and fine
         Array<uint32_t> order(context.memory), local_faces(context.memory);
         DBRG_PROPAGATE(sort_by_id(xyz, point_ids, faces, face_count, context, order, sorted, local_faces));
         xyz.release();

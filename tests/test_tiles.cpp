@@ -475,6 +475,22 @@ TEST_CASE("the tiling steps check their arguments") {
         return std::make_pair(status, text);
     };
     CHECK(stitch(&points, ids.data(), faces, 2, &tiling, 0.0).first == DBRG_OK);
+    // A wall with fewer than 4 points near it is a stitch with nothing to grow: its cut faces go.
+    const dbrg_points none{nullptr, 0, 3 * sizeof(double), DBRG_FLOAT64};
+    CHECK(stitch(&none, nullptr, nullptr, 0, &tiling, 0.0).first == DBRG_OK);
+    {
+        const double corners[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        const uint64_t corner_ids[] = {5, 6, 7}, face[] = {5, 6, 7};
+        const dbrg_points three_corners{corners, 3, 3 * sizeof(double), DBRG_FLOAT64};
+        dbrg_tile_mesh* seam = nullptr;
+        REQUIRE(dbrg_seam_stitch(&three_corners, corner_ids, face, 1, &tiling, 0.0, nullptr, &seam) == DBRG_OK);
+        uint64_t dropped_count = 0;
+        const uint64_t* dropped = dbrg_tile_mesh_dropped(seam, &dropped_count);
+        REQUIRE(dropped_count == 1);
+        CHECK(dropped[0] == 0);
+        CHECK(dbrg_tile_mesh_triangle_count(seam) == 0);
+        dbrg_tile_mesh_destroy(seam);
+    }
     CHECK(stitch(&points, ids.data(), faces, 2, nullptr, 0.0) ==
           std::make_pair(DBRG_ERR_INVALID_ARGUMENT, std::string("tiling is NULL")));
     dbrg_tiling bad = tiling;

@@ -521,9 +521,10 @@ DBRG_API dbrg_status dbrg_tiling_plan(const dbrg_points* points, uint32_t tile_c
  * that does the same gets the same mesh.
  * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (a NULL pointer, a bad tiling or wall, a face with a repeated
  * corner or an id not among point_ids, repeated point ids), or another status as dbrg_grow_from_surface,
- * with a message; a strip with no volume to grow in (flat, too few points) keeps its seeds.
+ * with a message; a strip with no volume to grow in (flat, fewer than 4 points) keeps its seeds.
  * points, point_ids: at least every point within tiling->seam_reach of the wall and every corner of
- *   `faces`, with distinct 64-bit global ids; read during the call only.
+ *   `faces`, with distinct 64-bit global ids, any number up to DBRG_MAX_POINTS (point_ids may be NULL
+ *   when there are none); read during the call only.
  * faces: 3 * face_count global ids: the faces so far (the tiles' owned faces, oriented as their tiles
  *   grew them, after the even walls' stitches for an odd wall), at least those with a corner within
  *   seam_reach of the wall or sharing a corner with a face that has one within 3 spacings. May be NULL

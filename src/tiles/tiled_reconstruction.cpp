@@ -129,6 +129,18 @@ dbrg_status run_tile(const Array<double>& xyz, int axis, const Array<double>& wa
 // Where a point lies from the wall being stitched.
 enum Zone : uint8_t { FAR = 0, BAND = 1, STRIP = 2 };
 
+// The zone of each of the `count` points `xyz` around `wall`: closer than the strip, within reach, or far.
+dbrg_status zone_points(const double* xyz, size_t count, int axis, double wall, double spacing, Context& context,
+                        Array<uint8_t>& zone) {
+    const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
+    if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
+    for (size_t i = 0; i < count; ++i) {
+        const double d = fabs(xyz[3 * i + axis] - wall);
+        zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
+    }
+    return DBRG_OK;
+}
+
 // The faces of `mesh` (3 global indices each) a stitch of `wall` needs, and the points they and the wall
 // need, as the stitch_seam contract says: the faces with a corner within reach of the wall or sharing a
 // corner with a face that has one in the strip. `faces` receives their indices in `mesh`, `points` the
@@ -136,13 +148,8 @@ enum Zone : uint8_t { FAR = 0, BAND = 1, STRIP = 2 };
 dbrg_status gather_seam(const Array<double>& xyz, const Array<uint32_t>& mesh, int axis, double wall, double spacing,
                         Context& context, Array<uint32_t>& faces, Array<uint32_t>& points) {
     const size_t count = xyz.size() / 3, face_count = mesh.size() / 3;
-    const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
     Array<uint8_t> zone(context.memory);
-    if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) {
-        const double d = fabs(xyz[3 * i + axis] - wall);
-        zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
-    }
+    DBRG_PROPAGATE(zone_points(xyz.data(), count, axis, wall, spacing, context, zone));
     // The corners of faces reaching into the strip join the band (marked 3: they widen nothing further).
     const uint8_t REACHED = 3;
     for (size_t f = 0; f < face_count; ++f) {
@@ -244,17 +251,12 @@ dbrg_status plan_tiling(const double* xyz, size_t count, uint32_t tile_count, Co
 dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, size_t face_count, int axis,
                         double wall, double spacing, Context& context, Array<uint32_t>& dropped,
                         Array<uint32_t>& added) {
-    const double strip = STRIP_SPACINGS * spacing, reach = strip + MARGIN_SPACINGS * spacing;
     // The band: the points within reach of the wall, and the corners of the faces cut (a long face can
     // reach further where the sampling is uneven). The seeds: the other faces with a corner in the band.
     // The strip's points: the band and the seeds' other corners, which are fixed (their fans are complete
     // outside, far from the faces cut), numbered in the given (global id) order.
     Array<uint8_t> zone(context.memory);
-    if (!zone.resize(count, FAR)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) {
-        const double d = fabs(xyz[3 * i + axis] - wall);
-        zone[i] = d < strip ? STRIP : d < reach ? BAND : FAR;
-    }
+    DBRG_PROPAGATE(zone_points(xyz, count, axis, wall, spacing, context, zone));
     const auto is_cut = [&](const uint32_t* t) {
         return zone[t[0]] == STRIP || zone[t[1]] == STRIP || zone[t[2]] == STRIP;
     };

@@ -46,6 +46,7 @@ def reconstruct_distributed(arguments):
     """`reconstruct ... --distributed`: parses the arguments the way the program does and runs
     dbrg.distributed.reconstruct. Returns the exit status (2 for a usage error, 1 for a failed run)."""
     import argparse
+    import contextlib
     import json
     import math
     import time
@@ -99,9 +100,10 @@ def reconstruct_distributed(arguments):
     try:
         start = time.monotonic()
         points, _ = dbrg.read_points(options.input)
-        mesh = dbrg.distributed.reconstruct(points, tiles=options.tiles, scheduler=options.scheduler,
-                                            n_workers=options.workers, memory_limit=options.memory_limit,
-                                            progress=not options.quiet, **surface)
+        with contextlib.redirect_stdout(sys.stderr):  # Dask's progress bar, as the program's, on stderr
+            mesh = dbrg.distributed.reconstruct(points, tiles=options.tiles, scheduler=options.scheduler,
+                                                n_workers=options.workers, memory_limit=options.memory_limit,
+                                                progress=not options.quiet, **surface)
         mesh.write(options.output, normals=not options.no_normals)
     except (dbrg.Error, OSError, ValueError, MemoryError, ImportError) as error:
         sys.stderr.write("dbrg: %s\n" % error)

@@ -18,6 +18,7 @@ this package importable on the workers.
 """
 
 import ctypes
+import warnings
 
 import numpy as np
 
@@ -190,15 +191,25 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
         raise ImportError("dbrg.distributed needs dask and distributed (Debian: python3-dask python3-distributed; "
                           "pip: distributed): %s" % error) from None
     lib = library()
+    # The tasks' parameters, checked here so that a bad one fails before any cluster work.
+    params = _params(lib, threads=1, **options)
+    message = ctypes.create_string_buffer(512)
+    status = lib.dbrg_params_validate(ctypes.byref(params), message, len(message))
+    if status != _OK:
+        raise _error(lib, status, message.value)
     array = np.ascontiguousarray(np.asarray(points), dtype=np.float64)
     cut = plan(array, tiles)
     if not cut.walls:
         return _reconstruct_one(points, **options)
     client, opened = _open_client(client, scheduler, n_workers, memory_limit)
     try:
-        faces = _tiles(client, array, cut, options, progress)
-        for half in (0, 1):
-            faces = _stitch_half(client, array, faces, cut, cut.walls[half::2], options, progress)
+        with warnings.catch_warnings():
+            # Dask advises scattering large task arguments; here they are sent in the tasks on purpose, so
+            # that a task outlives the worker it ran on (module docstring).
+            warnings.filterwarnings("ignore", message="Large object of size", category=UserWarning)
+            faces = _tiles(client, array, cut, options, progress)
+            for half in (0, 1):
+                faces = _stitch_half(client, array, faces, cut, cut.walls[half::2], options, progress)
     finally:
         for thing in opened:
             thing.close()

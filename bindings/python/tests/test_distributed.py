@@ -13,6 +13,7 @@ import numpy as np
 
 import dbrg
 from dbrg import _capi
+from dbrg.__main__ import program_path
 
 try:
     import distributed
@@ -100,6 +101,15 @@ class Distributed(unittest.TestCase):
         self.assertEqual(mesh.stats["tiles"], TILES)
         self.assertEqual(mesh.stats["seam_faces_dropped"], self.reference.stats["seam_faces_dropped"])
 
+    def test_a_bad_parameter_fails_before_any_task(self):
+        with self.assertRaises(dbrg.InvalidParameterError) as raised:
+            dbrg_distributed.reconstruct(self.points, tiles=TILES, client=self.client, progress=False,
+                                         boundary_factor=0.5)
+        self.assertIn("boundary_factor", raised.exception.message)
+        self.assertEqual(self.client.who_has(), {})  # nothing was submitted
+        with self.assertRaises(TypeError):
+            dbrg_distributed.reconstruct(self.points, client=self.client, threads=2)
+
     def test_one_worker_gives_what_two_give(self):
         cluster, client = local_cluster(1)
         try:
@@ -137,13 +147,14 @@ class Distributed(unittest.TestCase):
             self.assertTrue(os.path.exists(marker))  # a worker did die running a tile
         self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
 
+    @unittest.skipUnless(os.access(program_path(), os.X_OK), "no dbrg program at %s (set DBRG_PROGRAM)" % program_path())
     def test_the_command_line(self):
         with tempfile.TemporaryDirectory() as folder:
             source = os.path.join(folder, "torus.xyz")
             np.savetxt(source, self.points, fmt="%.17g")
             meshes = {}
             for name, command in (
-                    ("program", [os.environ["DBRG_PROGRAM"], "reconstruct", source, "--tiles", str(TILES)]),
+                    ("program", [program_path(), "reconstruct", source, "--tiles", str(TILES)]),
                     ("dask", [sys.executable, "-m", "dbrg", "reconstruct", source, "--tiles", str(TILES),
                               "--distributed", "--workers", "1"])):
                 output = os.path.join(folder, name + ".obj")
