@@ -5,7 +5,10 @@ memory and times (from /usr/bin/time), the slabs run and the most one slab held,
 process's faces the out-of-core mesh has. Not a test: run it by hand on a release build.
 
     python3 tests/bench/bench_out_of_core.py [--dbrg build/src/cli/dbrg] [--points 5000000] [--max-memory 1.5G]
-        [--workdir DIR] [--keep] [--skip-single]
+        [--repeat N] [--workdir DIR] [--keep] [--skip-single]
+
+With --repeat N the two runs alternate N times and the medians are reported (processor seconds are the
+figures to read on a shared machine).
 
 The cloud: `--points` points on a bumpy sphere (radius 1 +- 0.1, directions from the Fibonacci lattice: about
 evenly spaced, no two alike, deterministic; not on one sphere, whose cospherical points give a degenerate,
@@ -17,6 +20,7 @@ import argparse
 import json
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -104,6 +108,7 @@ def main():
     parser.add_argument("--workdir", help="where the cloud, the meshes and the tiles' files go (default: a new folder in .)")
     parser.add_argument("--keep", action="store_true", help="keep the cloud and the meshes")
     parser.add_argument("--skip-single", action="store_true", help="run only the out-of-core reconstruction")
+    parser.add_argument("--repeat", type=int, default=1, help="alternate the runs this many times; medians")
     args = parser.parse_args()
 
     # The tiles' files go beside the output: a folder on disk, not a tmpfs /tmp, keeps them out of memory.
@@ -114,16 +119,24 @@ def main():
         write_cloud(cloud, args.points)
     print(f"cloud: {args.points} points, {os.path.getsize(cloud) / 2**20:.0f} MiB ({cloud})")
 
-    rows = []
     tiled_out = os.path.join(workdir, "out_of_core.ply")
-    wall, cpu, rss, stats = timed([args.dbrg, "reconstruct", cloud, "-o", tiled_out, "--max-memory", args.max_memory,
-                                   "--quiet", "--stats-json", "-"])
-    rows.append(("--max-memory " + args.max_memory, wall, cpu, rss, stats))
     single_out = os.path.join(workdir, "single.ply")
+    runs = [("--max-memory " + args.max_memory,
+             [args.dbrg, "reconstruct", cloud, "-o", tiled_out, "--max-memory", args.max_memory, "--quiet", "--stats-json", "-"])]
     if not args.skip_single:
-        wall, cpu, rss, stats = timed([args.dbrg, "reconstruct", cloud, "-o", single_out, "--no-normals", "--quiet",
-                                       "--stats-json", "-"])
-        rows.append(("one process", wall, cpu, rss, stats))
+        runs.append(("one process", [args.dbrg, "reconstruct", cloud, "-o", single_out, "--no-normals", "--quiet",
+                                     "--stats-json", "-"]))
+    measured = {name: [] for name, _ in runs}
+    for _ in range(args.repeat):
+        for name, command in runs:
+            measured[name].append(timed(command))
+    rows = []
+    for name, _ in runs:
+        samples = measured[name]
+        median = lambda k: statistics.median(sample[k] for sample in samples)
+        rows.append((name, median(0), median(1), median(2), samples[-1][3]))
+        if args.repeat > 1:
+            print(f"{name}: processor s {', '.join(f'{sample[1]:.1f}' for sample in samples)}")
 
     print()
     print("| run | tiles | triangles | peak RSS (MiB) | RSS B/pt | largest tile (MiB) | wall s | processor s |")
