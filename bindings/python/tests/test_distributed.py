@@ -53,16 +53,28 @@ def local_cluster(workers):
     return cluster, Client(cluster)
 
 
-class HoldFirstTile(WorkerPlugin):
-    """Holds the first tile each worker starts for half a second, so later tiles finish before it."""
+class HoldEarlyTasks(WorkerPlugin):
+    """Holds each tile and each stitch, once computed, the longer the earlier it started among its kind (by the
+    lines of `log`, which every worker appends to when a task starts and when it is done), so that tasks are
+    done in another order than they started."""
+
+    def __init__(self, log):
+        self.log = log
 
     def setup(self, worker):
-        self.held = False
+        self.rank = {}
 
     def transition(self, key, start, finish, **kwargs):
-        if finish == "executing" and str(key).startswith("tile_task") and not self.held:
-            self.held = True
-            time.sleep(0.5)
+        kind = str(key).split("-")[0]
+        if kind not in ("tile_task", "stitch_task") or finish not in ("executing", "memory"):
+            return
+        if finish == "executing":
+            with open(self.log) as log:
+                self.rank[key] = sum(line.startswith("executing " + kind) for line in log)
+        else:
+            time.sleep(0.3 * max(TILES - 1 - self.rank.get(key, TILES), 0))
+        with open(self.log, "a") as log:
+            log.write("%s %s\n" % (finish, key))
 
 
 class KillOnFirstTile(WorkerPlugin):
@@ -77,7 +89,7 @@ class KillOnFirstTile(WorkerPlugin):
             os._exit(1)
 
 
-@unittest.skipIf(distributed is None, "skipped: " + (MISSING if distributed is None else ""))
+@unittest.skipIf(distributed is None, MISSING if distributed is None else "")
 class Distributed(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -119,19 +131,25 @@ class Distributed(unittest.TestCase):
             cluster.close()
         self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
 
-    def test_tiles_finishing_in_another_order(self):
-        cluster, client = local_cluster(2)
-        try:
-            client.register_worker_plugin(HoldFirstTile())
-            with distributed.get_task_stream(client) as stream:
+    def test_tasks_done_in_another_order(self):
+        with tempfile.TemporaryDirectory() as folder:
+            log = os.path.join(folder, "tiles")
+            open(log, "w").close()
+            cluster, client = local_cluster(TILES)  # a worker for each tile, so that they run side by side
+            try:
+                client.register_worker_plugin(HoldEarlyTasks(log))
                 mesh = self.run_on(client)
-        finally:
-            client.close()
-            cluster.close()
-        tiles = [t for t in stream.data if t["key"].startswith("tile_task")]
-        started = [t["key"] for t in sorted(tiles, key=lambda t: t["startstops"][0]["start"])]
-        finished = [t["key"] for t in sorted(tiles, key=lambda t: t["startstops"][-1]["stop"])]
-        self.assertNotEqual(started, finished)  # the held tiles finished after tiles started later
+            finally:
+                client.close()
+                cluster.close()
+            with open(log) as lines:
+                events = [line.split() for line in lines]
+        for kind, count in (("tile_task", TILES), ("stitch_task", TILES - 1)):
+            started = [key for event, key in events if event == "executing" and key.startswith(kind)]
+            finished = [key for event, key in events if event == "memory" and key.startswith(kind)]
+            self.assertEqual(len(finished), count)
+            if kind == "tile_task":  # the stitches of a half are 2 here, or 1: no order to change in the other
+                self.assertNotEqual(started, finished)
         self.assertTrue(np.array_equal(mesh.triangles, self.reference.triangles))
 
     def test_a_worker_killed_in_the_middle_of_a_tile(self):
