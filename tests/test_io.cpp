@@ -27,6 +27,7 @@
 
 #include "io/formats.h"
 #include "io/mesh_io.h"
+#include "io/ply_stream_writer.h"
 #include "io/text_scan.h"
 
 using namespace dbrg::io;
@@ -1595,3 +1596,117 @@ TEST_CASE("LAS intensity and colour become ushort PLY properties") {
     CHECK(same_bits(back.positions, mesh.positions));
     CHECK(same_properties(back.properties, mesh.properties));
 }
+
+#if defined(__unix__) || defined(__APPLE__)
+namespace {
+
+std::string file_bytes(const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    REQUIRE(file);
+    std::string bytes;
+    char buffer[4096];
+    for (size_t got; (got = std::fread(buffer, 1, sizeof buffer, file)) > 0;) bytes.append(buffer, got);
+    std::fclose(file);
+    return bytes;
+}
+
+size_t files_in(const std::string& folder) {
+    return static_cast<size_t>(std::distance(std::filesystem::directory_iterator(folder), {}));
+}
+
+} // namespace
+
+TEST_CASE("a streamed binary PLY reads back as written, float or double, in pieces of any size") {
+    const std::string folder = temp_path("stream");
+    REQUIRE(std::filesystem::create_directory(folder));
+    const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.5, 0.25, 0.125};
+    const std::vector<uint64_t> corners = {0, 2, 1, 0, 1, 3, 1, 2, 4};
+    for (bool as_double : {false, true}) {
+        CAPTURE(as_double);
+        const std::string path = folder + "/mesh.ply";
+        PlyStreamWriter writer;
+        REQUIRE(writer.open(path, {5, 3, as_double, false}));
+        REQUIRE(writer.add_vertices(xyz.data(), 2));
+        REQUIRE(writer.add_vertices(xyz.data() + 6, 3));
+        REQUIRE(writer.add_triangles(corners.data(), 1));
+        REQUIRE(writer.add_triangles(corners.data() + 3, 2));
+        REQUIRE(writer.finish());
+        MeshData mesh;
+        REQUIRE(read_mesh(path, mesh));
+        CHECK(mesh.positions == xyz);  // the coordinates are floats: exact either way
+        CHECK(std::equal(corners.begin(), corners.end(), mesh.triangles.begin(), mesh.triangles.end()));
+        CHECK(file_bytes(path).find(as_double ? "property double x" : "property float x") != std::string::npos);
+    }
+    std::filesystem::remove_all(folder);
+}
+
+TEST_CASE("a streamed PLY past 2^32 vertices numbers corners in 64 bits") {
+    const std::string path = temp_path("wide.ply");
+    const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const uint64_t corners[] = {2, 1, 0};
+    PlyStreamWriter writer;
+    REQUIRE(writer.open(path, {3, 1, false, true}));
+    REQUIRE(writer.add_vertices(xyz.data(), 3));
+    REQUIRE(writer.add_triangles(corners, 1));
+    REQUIRE(writer.finish());
+    const std::string bytes = file_bytes(path);
+    const std::string header_end = "property list uchar uint64 vertex_indices\nend_header\n";
+    const size_t body = bytes.find(header_end);
+    REQUIRE(body != std::string::npos);
+    const size_t face = body + header_end.size() + 3 * 3 * sizeof(float);
+    REQUIRE(bytes.size() == face + 1 + 3 * 8);
+    CHECK(bytes[face] == 3);
+    for (size_t k = 0; k < 3; ++k) {
+        uint64_t index = 0;
+        for (size_t i = 0; i < 8; ++i) index |= uint64_t(uint8_t(bytes[face + 1 + 8 * k + i])) << (8 * i);
+        CHECK(index == corners[k]);
+    }
+    std::remove(path.c_str());
+}
+
+TEST_CASE("a streamed PLY that fails or is abandoned leaves the old file and no temporary") {
+    const std::string folder = temp_path("stream_fail");
+    REQUIRE(std::filesystem::create_directory(folder));
+    const std::string path = folder + "/mesh.ply";
+    {
+        std::FILE* old = std::fopen(path.c_str(), "wb");
+        REQUIRE(old);
+        std::fputs("the old file", old);
+        std::fclose(old);
+    }
+    const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const uint64_t corners[] = {0, 1, 2, 0, 1, 3};
+    SUBCASE("fewer triangles than declared") {
+        PlyStreamWriter writer;
+        REQUIRE(writer.open(path, {3, 2, true, false}));
+        CHECK(files_in(folder) == 2);  // the temporary beside the target
+        REQUIRE(writer.add_vertices(xyz.data(), 3));
+        REQUIRE(writer.add_triangles(corners, 1));
+        const IoStatus status = writer.finish();
+        CHECK_FALSE(status);
+        CHECK(status.message.find("1 triangles written of the 3 and 2 declared") != std::string::npos);
+    }
+    SUBCASE("an index out of range") {
+        PlyStreamWriter writer;
+        REQUIRE(writer.open(path, {3, 2, true, false}));
+        REQUIRE(writer.add_vertices(xyz.data(), 3));
+        const IoStatus status = writer.add_triangles(corners, 2);
+        CHECK(status.message.find("triangle 1 uses vertex 3 of 3") != std::string::npos);
+        CHECK_FALSE(writer.finish());
+    }
+    SUBCASE("a triangle before the last vertex") {
+        PlyStreamWriter writer;
+        REQUIRE(writer.open(path, {3, 1, true, false}));
+        REQUIRE(writer.add_vertices(xyz.data(), 2));
+        CHECK_FALSE(writer.add_triangles(corners, 1));
+    }
+    SUBCASE("abandoned before finishing") {
+        PlyStreamWriter writer;
+        REQUIRE(writer.open(path, {3, 1, true, false}));
+        REQUIRE(writer.add_vertices(xyz.data(), 3));
+    }
+    CHECK(file_bytes(path) == "the old file");
+    CHECK(files_in(folder) == 1);
+    std::filesystem::remove_all(folder);
+}
+#endif

@@ -110,4 +110,24 @@ bool parse_count(const std::string& text, uint32_t& value) {
     return true;
 }
 
+bool parse_size(const std::string& text, uint64_t& bytes) {
+    static const struct {
+        char letter;
+        double factor;
+    } UNITS[] = {{'K', 1024.0}, {'M', 1024.0 * 1024}, {'G', 1024.0 * 1024 * 1024}, {'T', 1024.0 * 1024 * 1024 * 1024}};
+    std::string number = text;
+    double factor = 1;
+    for (const auto& unit : UNITS) {
+        if (!number.empty() && (number.back() == unit.letter || number.back() == unit.letter + ('a' - 'A'))) {
+            factor = unit.factor;
+            number.pop_back();
+            break;
+        }
+    }
+    double value;
+    if (!parse_number(number, value) || !(value > 0) || value * factor >= 18446744073709551615.0) return false;
+    bytes = uint64_t(value * factor);
+    return bytes > 0;
+}
+
 } // namespace dbrg::cli

@@ -45,6 +45,10 @@ bool parse_number(const std::string& text, double& value);
 // A whole number in 0 .. 2^32 - 1, the whole text; false otherwise.
 bool parse_count(const std::string& text, uint32_t& value);
 
+// A size in bytes: a positive number with an optional K, M, G or T (binary: 1K is 1024 bytes, any letter
+// case), the whole text ("1.5G"); false otherwise.
+bool parse_size(const std::string& text, uint64_t& bytes);
+
 // Writes `text` to the file at `path` (a failed write leaves the old file untouched), or to stdout when
 // path is empty or "-". Returns false with a message in `error` when the file cannot be written.
 bool write_text_output(const std::string& path, const std::string& text, std::string& error);

@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
@@ -17,6 +21,7 @@
 #include "io/unused_vertices.h"
 #include "io/vertex_normals.h"
 #include "samples/samples.h"
+#include "tiles/out_of_core.h"
 
 namespace dbrg::cli {
 namespace {
@@ -58,6 +63,10 @@ const char* const RECONSTRUCT_USAGE =
     "  --tiles N                reconstruct N slabs along the longest axis one after another and\n"
     "                           stitch them (docs/tiles.md): the memory of about one slab at a time\n"
     "                           besides the points; the mesh depends on N (default 1: one piece)\n"
+    "  --max-memory SIZE        for clouds larger than memory (.ply or .xyz INPUT, binary .ply OUTPUT):\n"
+    "                           read the file in passes and reconstruct slabs sized to SIZE (e.g. 1G,\n"
+    "                           512M) one after another from files on disk, writing the mesh as it goes;\n"
+    "                           no vertex normals or other properties (docs/tiles.md)\n"
     "  --no-normals             write no vertex normals\n"
     "  --drop-unused            write only the vertices the triangles use (renumbered, in input order)\n"
     "  --snapshots K            also write the surface at K evenly spaced stages of growth (points\n"
@@ -188,6 +197,62 @@ bool read_tiles(const ParsedArgs& args, const dbrg_params& params, uint32_t& til
     return true;
 }
 
+// --max-memory: the cloud is read from its file in passes and reconstructed in slabs sized to the budget,
+// never held whole, and the mesh streamed to a binary PLY (docs/tiles.md, "Out of core").
+int reconstruct_out_of_core(const ParsedArgs& args, const dbrg_params& params, const std::string& input,
+                            const std::string& output) {
+    uint64_t budget = 0;
+    if (!parse_size(args.value("--max-memory"), budget)) {
+        return report_error(EXIT_USAGE, "reconstruct: --max-memory takes a size such as 1G, 512M or 1500000000");
+    }
+    for (const char* option : {"--demo", "--tiles", "--snapshots", "--outliers", "--output-smoothed", "--drop-unused"}) {
+        if (args.has(option)) return report_error(EXIT_USAGE, std::string("reconstruct: ") + option + " does not combine with --max-memory");
+    }
+    if (io::format_from_path(output) != io::MeshFormat::ply_binary) {
+        return report_error(EXIT_USAGE, "reconstruct: --max-memory writes binary .ply only: '" + output + "'");
+    }
+#if defined(__GLIBC__)
+    // glibc raises its mmap threshold after large blocks are freed, after which a tile's large arrays come
+    // from the heap and stay resident once freed: the peak crept up to 1.6 times one tile's. A fixed
+    // threshold gives every large array back to the system when its tile is done.
+    mallopt(M_MMAP_THRESHOLD, 256 << 10);
+#endif
+    out_of_core::Options options;
+    options.max_memory_bytes = budget;
+    options.params = params;
+    ProgressBar bar(!args.has("--quiet"));
+    options.params.progress = ProgressBar::callback;
+    options.params.progress_user = &bar;
+    out_of_core::Report report;
+    const double start = seconds_now();
+    const io::IoStatus status = out_of_core::reconstruct_file(input, output, options, report);
+    const double seconds = seconds_now() - start;
+    bar.finish();
+    if (!status) return report_error(EXIT_FAILED, status.message);
+    if (args.has("--stats-json")) {
+        io::JsonObject json;
+        json.add_unsigned("points", report.points)
+            .add_unsigned("triangles", report.triangles)
+            .add_unsigned("boundary_edges", report.boundary_edges)
+            .add_unsigned("components", report.components)
+            .add_unsigned("tiles", report.tiles)
+            .add_number("spacing", report.spacing)
+            .add_unsigned("max_memory_bytes", budget)
+            .add_unsigned("tile_peak_bytes", report.tile_peak_bytes)
+            .add_unsigned("orientation_conflicts", report.orientation_conflicts)
+            .add_number("seconds_total", seconds)
+            .add_unsigned("peak_rss_bytes", peak_rss_bytes());
+        std::string error;
+        if (!write_text_output(args.value("--stats-json"), json.str() + "\n", error)) return report_error(EXIT_FAILED, error);
+    }
+    if (!args.has("--quiet")) {
+        std::fprintf(stderr, "dbrg: %llu points -> %llu triangles in %u tiles in %.3f s; wrote %s\n",
+                     static_cast<unsigned long long>(report.points), static_cast<unsigned long long>(report.triangles),
+                     report.tiles, seconds, output.c_str());
+    }
+    return EXIT_OK;
+}
+
 std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double seconds_read, double seconds_write) {
     // A single call ran as one tile, which held everything the library held.
     const bool tiled = s.tiles > 1;
@@ -254,6 +319,7 @@ int run_reconstruct(int argc, char** argv) {
         {"--threads", nullptr, true},      {"--snapshots", nullptr, true},       {"--quiet", "-q", false},
         {"--no-normals", nullptr, false},  {"--drop-unused", nullptr, false},     {"--tiles", nullptr, true},
         {"--cleaning", nullptr, true},     {"--output-smoothed", nullptr, false}, {"--outliers", nullptr, true},
+        {"--max-memory", nullptr, true},
     };
     ParsedArgs args;
     std::string error;
@@ -291,6 +357,7 @@ int run_reconstruct(int argc, char** argv) {
     for (uint32_t k = 1; k <= params.snapshot_count; ++k) outputs.push_back(snapshots.path(k));
     const std::string input = args.has("--demo") ? "" : args.positional[0];
     if (!check_outputs(outputs, input, error)) return report_error(EXIT_FAILED, "reconstruct: " + error);
+    if (args.has("--max-memory")) return reconstruct_out_of_core(args, params, input, output);
 
     double start = seconds_now();
     if (args.has("--demo")) {

@@ -1,4 +1,4 @@
-// Whole-file output that replaces a regular file only once the new contents are safely on disk.
+// File output that replaces a regular file only once the new contents are safely on disk.
 #include "io/file_output.h"
 
 #include <cerrno>
@@ -18,14 +18,6 @@ IoStatus failure(const std::string& path, const std::string& what) { return IoSt
 
 IoStatus system_failure(const std::string& path, const char* action) {
     return failure(path, std::string(action) + ": " + std::strerror(errno));
-}
-
-// The folder that holds `path` ("." for a bare name), where the temporary file must go for the rename
-// to be atomic.
-std::string folder_of(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    if (slash == std::string::npos) return ".";
-    return slash == 0 ? "/" : path.substr(0, slash);
 }
 
 std::string name_of(const std::string& path) {
@@ -63,47 +55,6 @@ bool write_all(int descriptor, std::string_view bytes) {
     return true;
 }
 
-IoStatus write_standard_output(std::string_view bytes) {
-    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), stdout) == bytes.size();
-    if (written && std::fflush(stdout) == 0) return IoStatus::success();
-    return system_failure("standard output", "cannot write");
-}
-
-// FIFOs and devices cannot be replaced by a rename: they get the bytes as they are.
-IoStatus write_in_place(const std::string& path, std::string_view bytes) {
-    const int descriptor = open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-    if (descriptor < 0) return system_failure(path, "cannot open");
-    const bool written = write_all(descriptor, bytes);
-    const int saved_errno = errno;
-    if (close(descriptor) != 0 || !written) {
-        if (!written) errno = saved_errno;
-        return system_failure(path, "cannot write");
-    }
-    return IoStatus::success();
-}
-
-// The whole contents to a temporary beside `target`, then one rename; the target is never half written.
-IoStatus replace_atomically(const std::string& path, const std::string& target, const struct stat* old_file,
-                            std::string_view bytes) {
-    std::string temporary;
-    const int descriptor = create_temporary(target, temporary);
-    if (descriptor < 0) return system_failure(path, "cannot create a file in its folder");
-    // fsync before the rename: a full disk often shows only when the data is flushed, and the old file
-    // must not be replaced by one the disk never took.
-    bool ok = write_all(descriptor, bytes) && (!old_file || fchmod(descriptor, old_file->st_mode & 07777) == 0) &&
-              fsync(descriptor) == 0;
-    int saved_errno = errno;
-    if (close(descriptor) != 0 && ok) {
-        ok = false;
-        saved_errno = errno;
-    }
-    if (ok && rename(temporary.c_str(), target.c_str()) == 0) return IoStatus::success();
-    if (ok) saved_errno = errno;
-    unlink(temporary.c_str());
-    errno = saved_errno;
-    return system_failure(path, "cannot write");
-}
-
 // What stands at `path` now: found (with its stat) or not; a folder, or a file the user protected
 // against writing, is refused.
 IoStatus inspect_target(const std::string& path, bool& exists, struct stat& info) {
@@ -116,14 +67,109 @@ IoStatus inspect_target(const std::string& path, bool& exists, struct stat& info
 
 } // namespace
 
-IoStatus write_file(const std::string& path, std::string_view bytes) {
-    if (path == "-") return write_standard_output(bytes);
+// The temporary goes in the target's folder, where the rename is atomic.
+std::string folder_of(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    if (slash == std::string::npos) return ".";
+    return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+FileWriter::~FileWriter() { abandon(); }
+
+void FileWriter::abandon() {
+    if (descriptor_ >= 0) close(descriptor_);
+    descriptor_ = -1;
+    if (!temporary_.empty()) unlink(temporary_.c_str());
+    temporary_.clear();
+    stream_ = nullptr;
+}
+
+IoStatus FileWriter::fail(const char* action) {
+    const int saved_errno = errno;
+    abandon();
+    errno = saved_errno;
+    status_ = system_failure(path_ == "-" ? "standard output" : path_, action);
+    return status_;
+}
+
+IoStatus FileWriter::open(const std::string& path) {
+    abandon();
+    path_ = path;
+    status_ = IoStatus::success();
+    buffer_.clear();
+    buffer_.reserve(BUFFER_BYTES);
+    if (path == "-") {
+        stream_ = stdout;
+        return status_;
+    }
     bool exists = false;
     struct stat info;
-    const IoStatus target_status = inspect_target(path, exists, info);
-    if (!target_status) return target_status;
-    if (exists && !S_ISREG(info.st_mode)) return write_in_place(path, bytes);
-    return exists ? replace_atomically(path, resolved(path), &info, bytes) : replace_atomically(path, path, nullptr, bytes);
+    status_ = inspect_target(path, exists, info);
+    if (!status_) return status_;
+    if (exists && !S_ISREG(info.st_mode)) {
+        // FIFOs and devices cannot be replaced by a rename: they get the bytes as they come.
+        descriptor_ = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+        return descriptor_ < 0 ? fail("cannot open") : status_;
+    }
+    target_ = exists ? resolved(path) : path;
+    keep_mode_ = exists;
+    mode_ = exists ? info.st_mode & 07777 : 0;
+    descriptor_ = create_temporary(target_, temporary_);
+    if (descriptor_ < 0) {
+        temporary_.clear();
+        return fail("cannot create a file in its folder");
+    }
+    return status_;
+}
+
+IoStatus FileWriter::write_out(std::string_view bytes) {
+    if (!status_ || bytes.empty()) return status_;
+    const bool written = stream_ ? std::fwrite(bytes.data(), 1, bytes.size(), stream_) == bytes.size()
+                                 : write_all(descriptor_, bytes);
+    return written ? status_ : fail("cannot write");
+}
+
+IoStatus FileWriter::flush() {
+    write_out(buffer_);
+    buffer_.clear();
+    return status_;
+}
+
+IoStatus FileWriter::write(std::string_view bytes) {
+    if (buffer_.size() + bytes.size() > BUFFER_BYTES && !flush()) return status_;
+    // A large piece (a whole mesh) goes out as it is rather than through the buffer.
+    if (bytes.size() >= BUFFER_BYTES) return write_out(bytes);
+    if (status_) buffer_.append(bytes.data(), bytes.size());
+    return status_;
+}
+
+IoStatus FileWriter::finish() {
+    if (!flush()) return status_;
+    if (stream_) {
+        const bool flushed = std::fflush(stream_) == 0;
+        stream_ = nullptr;
+        return flushed ? status_ : fail("cannot write");
+    }
+    if (temporary_.empty()) {
+        const int descriptor = descriptor_;
+        descriptor_ = -1;
+        return close(descriptor) == 0 ? status_ : fail("cannot write");
+    }
+    // fsync before the rename: a full disk often shows only when the data is flushed, and the old file
+    // must not be replaced by one the disk never took.
+    if ((keep_mode_ && fchmod(descriptor_, mode_) != 0) || fsync(descriptor_) != 0) return fail("cannot write");
+    const int descriptor = descriptor_;
+    descriptor_ = -1;
+    if (close(descriptor) != 0 || rename(temporary_.c_str(), target_.c_str()) != 0) return fail("cannot write");
+    temporary_.clear();
+    return status_;
+}
+
+IoStatus write_file(const std::string& path, std::string_view bytes) {
+    FileWriter writer;
+    IoStatus status = writer.open(path);
+    if (status) status = writer.write(bytes);
+    return status ? writer.finish() : status;
 }
 
 IoStatus check_output_path(const std::string& path) {

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -29,6 +31,24 @@ IoStatus read_off(ByteSource& source, MeshData& out);
 IoStatus read_xyz(ByteSource& source, MeshData& out);
 IoStatus read_stl(ByteSource& source, MeshData& out);
 IoStatus read_las(ByteSource& source, MeshData& out);
+
+// The points of a file a batch at a time, for clouds larger than memory (point_reader.h).
+class PointParser {
+public:
+    virtual ~PointParser() = default;
+    // Stores up to `capacity` points (x, y, z each) in `xyz` and their number in `count`, 0 once the
+    // points are over; a failure's message says where it is, as the readers' do.
+    virtual IoStatus read(double* xyz, size_t capacity, size_t& count) = 0;
+    // The place of the last point read, in the words of the messages.
+    virtual std::string place() const = 0;
+    // The number of points, when the file declares it (a PLY header).
+    virtual std::optional<uint64_t> declared_count() const { return std::nullopt; }
+};
+
+// The PLY vertex element's x, y, z (any encoding; everything else is read past); parses the header first.
+IoStatus ply_points(ByteSource& source, std::unique_ptr<PointParser>& out);
+// The points of XYZ/PTS lines.
+std::unique_ptr<PointParser> xyz_points(ByteSource& source);
 
 void write_ply(const MeshData& mesh, bool binary, std::string& out);
 void write_obj(const MeshData& mesh, std::string& out);

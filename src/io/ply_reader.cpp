@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -83,7 +84,8 @@ struct Header {
     Encoding encoding = Encoding::ascii;
     std::vector<Element> elements;
     size_t header_lines = 0;  // lines up to and including end_header
-    uint32_t vertex_count = 0;
+    uint64_t vertex_count = 0;  // more than 32 bits only for the points streamed (ply_points)
+    size_t vertex_line = 0;     // the line of the vertex element
     bool has_vertex_element = false;
     bool has_normals = false;  // the vertex element has nx, ny and nz
 };
@@ -157,12 +159,9 @@ IoStatus parse_element(TokenSplitter& tokens, Header& header, size_t line) {
     element.count = static_cast<uint64_t>(count);
     if (element.kind == ElementKind::vertex) {
         if (header.has_vertex_element) return header_error(line, "a second 'vertex' element");
-        // Indices are 32-bit; UINT32_MAX stays free as a sentinel for users of the mesh.
-        if (element.count >= std::numeric_limits<uint32_t>::max()) {
-            return header_error(line, "element vertex declares " + std::to_string(element.count) + " vertices; at most 4294967294 are supported");
-        }
         header.has_vertex_element = true;
-        header.vertex_count = static_cast<uint32_t>(element.count);
+        header.vertex_count = element.count;
+        header.vertex_line = line;
     }
     header.elements.push_back(std::move(element));
     return IoStatus::success();
@@ -444,7 +443,7 @@ void minimum_item_size(const Element& element, size_t& bytes, size_t& tokens) {
 template <class Source>
 IoStatus read_body(const Header& header, Source& source, MeshData& out) {
     auto fail = [&](const std::string& what) { return IoStatus::failure("PLY " + source.place() + ": " + what); };
-    CornerDecoder corners(header.vertex_count, out.triangles);
+    CornerDecoder corners(static_cast<uint32_t>(header.vertex_count), out.triangles);
     std::string error;
     std::vector<double> face_values(out.face_properties.size(), 0.0);  // the current face's, by Property::carried
     for (const Element& element : header.elements) {
@@ -531,12 +530,105 @@ IoStatus read_body(const Header& header, Source& source, MeshData& out) {
     return IoStatus::success();
 }
 
+// The vertex positions of a PLY body, an item at a time: x, y, z read, everything else read past, and
+// the elements before the vertex element read past whole.
+template <class Source>
+class PlyPoints final : public PointParser {
+public:
+    template <class... Arguments>
+    PlyPoints(Header header, Arguments&&... arguments)
+        : header_(std::move(header)), source_(std::forward<Arguments>(arguments)...) {}
+
+    IoStatus read(double* xyz, size_t capacity, size_t& count) override {
+        count = 0;
+        while (element_ < header_.elements.size()) {
+            const Element& element = header_.elements[element_];
+            if (item_ == 0 && !element.properties.empty()) {
+                size_t min_bytes = 0, min_tokens = 0;
+                minimum_item_size(element, min_bytes, min_tokens);
+                if (!source_.can_hold(element.count, min_tokens, min_bytes)) {
+                    return fail("element '" + element.name + "' declares " + std::to_string(element.count) +
+                                " items, more than the rest of the file can hold");
+                }
+            }
+            if (element.properties.empty()) item_ = element.count;
+            const bool is_vertex = element.kind == ElementKind::vertex;
+            for (; item_ < element.count; ++item_) {
+                if (is_vertex && count == capacity) return IoStatus::success();
+                double values[3] = {0.0, 0.0, 0.0};
+                for (const Property& property : element.properties) {
+                    const std::string error = read_value(property, values);
+                    if (!error.empty()) return fail(error);
+                }
+                if (!is_vertex) continue;
+                for (size_t k = 0; k < 3; ++k) xyz[3 * count + k] = values[k];
+                ++count;
+            }
+            if (is_vertex) {
+                element_ = header_.elements.size();  // the points are over: what follows is not read
+                break;
+            }
+            ++element_;
+            item_ = 0;
+        }
+        return IoStatus::success();
+    }
+    std::string place() const override { return source_.place(); }
+    std::optional<uint64_t> declared_count() const override { return header_.vertex_count; }
+
+private:
+    // Reads one value (or list) of an item, keeping x, y and z in `values`; returns what went wrong, or "".
+    std::string read_value(const Property& property, double values[3]) {
+        bool read = false;
+        if (property.is_list) {
+            int64_t length = 0;
+            if (!source_.read_integer(property.count_type, length)) return source_.error();
+            if (length < 0) return "negative list length " + std::to_string(length);
+            if (static_cast<uint64_t>(length) > source_.list_limit(property.type)) {
+                return "list length " + std::to_string(length) + " is more than the rest of the file can hold";
+            }
+            read = source_.skip_list_items(property.type, static_cast<uint64_t>(length));
+        } else if (property.role == Role::x || property.role == Role::y || property.role == Role::z) {
+            const size_t slot = static_cast<size_t>(property.role) - static_cast<size_t>(Role::x);
+            read = source_.read_number(property.type, values[slot]);
+        } else {
+            read = source_.skip(property.type);
+        }
+        return read ? std::string() : source_.error();
+    }
+    IoStatus fail(const std::string& what) { return IoStatus::failure("PLY " + source_.place() + ": " + what); }
+
+    Header header_;
+    Source source_;
+    size_t element_ = 0;
+    uint64_t item_ = 0;
+};
+
 } // namespace
+
+IoStatus ply_points(ByteSource& source, std::unique_ptr<PointParser>& out) {
+    Header header;
+    const IoStatus status = parse_header(source, header);
+    if (!status) return status;
+    if (header.encoding == Encoding::ascii) {
+        const size_t header_lines = header.header_lines;
+        out = std::make_unique<PlyPoints<AsciiSource>>(std::move(header), source, header_lines);
+    } else {
+        const bool big_endian = header.encoding == Encoding::binary_big;
+        out = std::make_unique<PlyPoints<BinarySource>>(std::move(header), source, big_endian);
+    }
+    return IoStatus::success();
+}
 
 IoStatus read_ply(ByteSource& source, MeshData& out) {
     Header header;
     IoStatus status = parse_header(source, header);
     if (!status) return status;
+    // A mesh's indices are 32-bit; UINT32_MAX stays free as a sentinel for users of the mesh.
+    if (header.vertex_count >= std::numeric_limits<uint32_t>::max()) {
+        return header_error(header.vertex_line, "element vertex declares " + std::to_string(header.vertex_count) +
+                                                    " vertices; at most 4294967294 are supported");
+    }
     for (Element& element : header.elements) {
         for (Property& property : element.properties) {
             if (property.role != Role::carry) continue;

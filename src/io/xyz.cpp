@@ -1,5 +1,6 @@
 // XYZ / PTS point reader (one point per line, blanks or commas between columns) and writer.
 #include <limits>
+#include <memory>
 #include <string>
 
 #include "io/formats.h"
@@ -19,38 +20,62 @@ std::string_view strip_xyz_comment(std::string_view line) {
     return slashes == std::string_view::npos ? line : line.substr(0, slashes);
 }
 
+// The points of an XYZ text, one line at a time.
+class XyzPoints final : public PointParser {
+public:
+    explicit XyzPoints(ByteSource& source) : lines_(source) {}
+
+    IoStatus read(double* xyz, size_t capacity, size_t& count) override {
+        count = 0;
+        std::string_view line, word;
+        while (count < capacity && lines_.next(line)) {
+            TokenSplitter tokens(strip_xyz_comment(line), true);
+            if (!tokens.next(word)) continue;
+            // A .pts file may start with the number of points on a line of its own; it is not needed.
+            TokenSplitter after_first = tokens;
+            std::string_view second;
+            int64_t declared = 0;
+            if (first_data_line_ && !after_first.next(second) && parse_int64(word, declared) && declared >= 0) {
+                first_data_line_ = false;
+                continue;
+            }
+            first_data_line_ = false;
+            // Columns past the third (intensity, colour, normal) are ignored.
+            for (size_t k = 0; k < 3; ++k) {
+                if (k > 0 && !tokens.next(word)) return line_error(lines_.line_number(), "a point needs three coordinates");
+                if (!parse_double(word, xyz[3 * count + k])) {
+                    return line_error(lines_.line_number(), "expected a coordinate, found " + quote_token(word));
+                }
+            }
+            ++count;
+        }
+        if (lines_.failed()) return line_error(lines_.line_number(), lines_.error());
+        return IoStatus::success();
+    }
+    std::string place() const override { return line_place(lines_.line_number()); }
+
+private:
+    LineReader lines_;
+    bool first_data_line_ = true;
+};
+
 } // namespace
 
+std::unique_ptr<PointParser> xyz_points(ByteSource& source) { return std::make_unique<XyzPoints>(source); }
+
 IoStatus read_xyz(ByteSource& source, MeshData& out) {
-    LineReader lines(source);
-    std::string_view line, word;
-    bool first_data_line = true;
-    while (lines.next(line)) {
-        TokenSplitter tokens(strip_xyz_comment(line), true);
-        if (!tokens.next(word)) continue;
-        // A .pts file may start with the number of points on a line of its own; it is not needed.
-        TokenSplitter after_first = tokens;
-        std::string_view second;
-        int64_t count = 0;
-        if (first_data_line && !after_first.next(second) && parse_int64(word, count) && count >= 0) {
-            first_data_line = false;
-            continue;
-        }
-        first_data_line = false;
-        // Columns past the third (intensity, colour, normal) are ignored.
-        for (size_t k = 0; k < 3; ++k) {
-            double value = 0.0;
-            if (k > 0 && !tokens.next(word)) return line_error(lines.line_number(), "a point needs three coordinates");
-            if (!parse_double(word, value)) return line_error(lines.line_number(), "expected a coordinate, found " + quote_token(word));
-            note_non_finite(out, value, [&] { return line_place(lines.line_number()); });
-            out.positions.push_back(value);
-        }
+    XyzPoints points(source);
+    for (;;) {
+        double xyz[3];
+        size_t count = 0;
+        const IoStatus status = points.read(xyz, 1, count);
+        if (!status || count == 0) return status;
+        for (double value : xyz) note_non_finite(out, value, [&] { return points.place(); });
+        out.positions.insert(out.positions.end(), xyz, xyz + 3);
         if (out.vertex_count() >= std::numeric_limits<uint32_t>::max()) {
-            return line_error(lines.line_number(), "more than 4294967294 points");
+            return IoStatus::failure("XYZ " + points.place() + ": more than 4294967294 points");
         }
     }
-    if (lines.failed()) return line_error(lines.line_number(), lines.error());
-    return IoStatus::success();
 }
 
 void write_xyz(const MeshData& mesh, std::string& out) {

@@ -31,12 +31,6 @@ struct CellGrid {
     static uint64_t key(int64_t x, int64_t y, int64_t z) { return uint64_t(x) << 42 | uint64_t(y) << 21 | uint64_t(z); }
 };
 
-uint64_t coordinate_hash(const double* p) {
-    uint64_t bits[3];
-    memcpy(bits, p, sizeof bits);
-    return SplitMix64(bits[0] ^ SplitMix64(bits[1] ^ SplitMix64(bits[2]).next()).next()).next();
-}
-
 // Distance from point `i` to its nearest other point, searching rings of cells outward; HUGE_VAL when
 // none is within MAX_RINGS cells.
 double nearest_distance(const double* xyz, size_t i, const CellGrid& grid, const Array<CellEntry>& cells) {
@@ -71,6 +65,19 @@ double nearest_distance(const double* xyz, size_t i, const CellGrid& grid, const
 
 } // namespace
 
+uint64_t coordinate_hash(const double* p) {
+    uint64_t bits[3];
+    memcpy(bits, p, sizeof bits);
+    return SplitMix64(bits[0] ^ SplitMix64(bits[1] ^ SplitMix64(bits[2]).next()).next()).next();
+}
+
+double spacing_grid_cell(double extent, size_t count) {
+    // Points on a surface of about the box's size are about extent / sqrt(count) apart: a cell or two.
+    return std::max(extent / sqrt(double(count)), extent * 0x1p-20);
+}
+
+uint64_t spacing_sample_stride(size_t count) { return std::max<uint64_t>(1, count / SAMPLE_POINTS); }
+
 dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, double& spacing) {
     spacing = 0;
     if (count < 2) return DBRG_OK;
@@ -85,8 +92,7 @@ dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, 
     }
     const double extent = std::max({high[0] - grid.low[0], high[1] - grid.low[1], high[2] - grid.low[2]});
     if (!(extent > 0)) return DBRG_OK;
-    // Points on a surface of about the box's size are about extent / sqrt(count) apart: a cell or two.
-    grid.cell = std::max(extent / sqrt(double(count)), extent * 0x1p-20);
+    grid.cell = spacing_grid_cell(extent, count);
     Array<CellEntry> cells(context.memory);
     if (!cells.reserve(count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) {
@@ -97,7 +103,7 @@ dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, 
     std::sort(cells.begin(), cells.end(), [](const CellEntry& a, const CellEntry& b) {
         return a.key != b.key ? a.key < b.key : a.point < b.point;
     });
-    const uint64_t stride = std::max<uint64_t>(1, count / SAMPLE_POINTS);
+    const uint64_t stride = spacing_sample_stride(count);
     Array<double> distances(context.memory);
     for (size_t i = 0; i < count; ++i) {
         if (coordinate_hash(xyz + 3 * i) % stride != 0) continue;
