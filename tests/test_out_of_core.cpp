@@ -270,16 +270,6 @@ FileRun reconstruct_file(const Folder& folder, const std::vector<double>& xyz, u
     return run;
 }
 
-std::vector<uint32_t> tiled_triangles(const std::vector<double>& xyz, uint32_t tiles) {
-    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
-    dbrg_mesh* mesh = nullptr;
-    REQUIRE(dbrg_reconstruct_tiled(&points, tiles, nullptr, &mesh) == DBRG_OK);
-    const uint32_t* t = dbrg_mesh_triangles(mesh);
-    std::vector<uint32_t> triangles(t, t + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
-    dbrg_mesh_destroy(mesh);
-    return triangles;
-}
-
 } // namespace
 
 TEST_CASE("out-of-core meshes of a torus, a double torus and a saddle match the single call and --tiles N") {
@@ -302,7 +292,9 @@ TEST_CASE("out-of-core meshes of a torus, a double torus and a saddle match the 
             REQUIRE_MESSAGE(run.status, run.status.message);
             const measure::MeshReport report = test::report_of(xyz, run.triangles);
             const double agreement = face_agreement(run.triangles, single.triangles);
-            const std::vector<uint32_t> tiled = tiled_triangles(xyz, tiles);
+            const test::Reconstruction tiled_run = test::reconstruct_tiled(xyz, tiles);
+            REQUIRE(tiled_run.status == DBRG_OK);
+            const std::vector<uint32_t>& tiled = tiled_run.triangles;
             const double tiled_agreement = face_agreement(run.triangles, tiled);
             MESSAGE(name << ", " << tiles << " tiles asked, " << run.report.tiles << " run: face agreement " << agreement
                          << " with the single call, " << tiled_agreement << " with --tiles");

@@ -19,20 +19,6 @@ using namespace dbrg;
 
 namespace {
 
-test::Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles) {
-    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
-    test::Reconstruction result;
-    dbrg_mesh* mesh = nullptr;
-    result.status = dbrg_reconstruct_tiled(&points, tiles, nullptr, &mesh);
-    const uint32_t* t = dbrg_mesh_triangles(mesh);
-    result.triangles.assign(t, t + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
-    result.boundary_loops = dbrg_mesh_boundary_loop_count(mesh);
-    result.stats.struct_size = sizeof result.stats;
-    dbrg_mesh_stats(mesh, &result.stats);
-    dbrg_mesh_destroy(mesh);
-    return result;
-}
-
 // The share of `reference`'s faces (by their corner indices, any order) that `mesh` has.
 double face_agreement(const std::vector<uint32_t>& mesh, const std::vector<uint32_t>& reference) {
     std::set<std::array<uint32_t, 3>> faces;
@@ -68,7 +54,7 @@ TEST_CASE("stitched tiles of a torus, a double torus and a saddle match the sing
             const std::string name = facts.name;
             CAPTURE(name);
             CAPTURE(tiles);
-            const test::Reconstruction tiled = reconstruct_tiled(xyz, tiles);
+            const test::Reconstruction tiled = test::reconstruct_tiled(xyz, tiles);
             REQUIRE(tiled.status == DBRG_OK);
             const measure::MeshReport report = test::report_of(xyz, tiled.triangles);
             const double agreement = face_agreement(tiled.triangles, single.triangles);
@@ -176,13 +162,13 @@ TEST_CASE("tiles own each triangle once and give the same pieces whatever order 
 
 TEST_CASE("a stitched mesh does not depend on the order of the input points") {
     std::vector<double> xyz = samples::sample(samples::Shape::double_torus, 12000);
-    const test::Reconstruction first = reconstruct_tiled(xyz, 4);
+    const test::Reconstruction first = test::reconstruct_tiled(xyz, 4);
     REQUIRE(first.status == DBRG_OK);
     std::vector<double> reversed;
     for (size_t i = xyz.size() / 3; i-- > 0;) {
         reversed.insert(reversed.end(), xyz.begin() + 3 * i, xyz.begin() + 3 * i + 3);
     }
-    const test::Reconstruction second = reconstruct_tiled(reversed, 4);
+    const test::Reconstruction second = test::reconstruct_tiled(reversed, 4);
     REQUIRE(second.status == DBRG_OK);
     CHECK(test::triangles_by_position(xyz, first.triangles) == test::triangles_by_position(reversed, second.triangles));
 }
@@ -235,7 +221,7 @@ TEST_CASE("growing from a given partial surface closes it and leaves fixed point
 TEST_CASE("a small cloud runs as one piece: slabs thinner than their strips are merged") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 500);
     const test::Reconstruction single = test::reconstruct(xyz);
-    const test::Reconstruction tiled = reconstruct_tiled(xyz, 4);
+    const test::Reconstruction tiled = test::reconstruct_tiled(xyz, 4);
     REQUIRE(tiled.status == DBRG_OK);
     CHECK(tiled.stats.tiles == 1);
     CHECK(tiled.triangles == single.triangles);
@@ -418,7 +404,7 @@ TEST_CASE("the tiling steps run by hand give dbrg_reconstruct_tiled's faces, wha
         const std::vector<double> xyz = samples::sample(c.shape, c.points);
         const std::string name = samples::facts(c.shape).name;
         CAPTURE(name);
-        const test::Reconstruction whole = reconstruct_tiled(xyz, c.tiles);
+        const test::Reconstruction whole = test::reconstruct_tiled(xyz, c.tiles);
         REQUIRE(whole.status == DBRG_OK);
         const Steps forward = run_steps(xyz, c.tiles, WallOrder::forward, false);
         REQUIRE(forward.mesh.status == DBRG_OK);

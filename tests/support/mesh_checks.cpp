@@ -24,10 +24,12 @@ std::vector<double> edge_lengths(const std::vector<double>& xyz, const std::vect
 
 } // namespace
 
-Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params) {
+namespace {
+
+// What a call that made `mesh` with `status` gives; frees the mesh.
+Reconstruction result_of(dbrg_status status, dbrg_mesh* mesh) {
     Reconstruction result;
-    dbrg_mesh* mesh = nullptr;
-    result.status = dbrg_reconstruct(&points, params, &mesh);
+    result.status = status;
     REQUIRE(mesh != nullptr);
     const uint32_t* triangles = dbrg_mesh_triangles(mesh);
     result.triangles.assign(triangles, triangles + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
@@ -41,9 +43,27 @@ Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params)
     return result;
 }
 
+dbrg_points points_of(const std::vector<double>& xyz) {
+    return dbrg_points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
+}
+
+} // namespace
+
+Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params) {
+    dbrg_mesh* mesh = nullptr;
+    const dbrg_status status = dbrg_reconstruct(&points, params, &mesh);
+    return result_of(status, mesh);
+}
+
 Reconstruction reconstruct(const std::vector<double>& xyz, const dbrg_params* params) {
-    const dbrg_points points{xyz.data(), xyz.size() / 3, 3 * sizeof(double), DBRG_FLOAT64};
-    return reconstruct(points, params);
+    return reconstruct(points_of(xyz), params);
+}
+
+Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles) {
+    const dbrg_points points = points_of(xyz);
+    dbrg_mesh* mesh = nullptr;
+    const dbrg_status status = dbrg_reconstruct_tiled(&points, tiles, nullptr, &mesh);
+    return result_of(status, mesh);
 }
 
 measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles) {

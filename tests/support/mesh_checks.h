@@ -21,6 +21,8 @@ struct Reconstruction {
 // Reconstructs x, y, z doubles (or any dbrg_points) with `params` (NULL: defaults).
 Reconstruction reconstruct(const std::vector<double>& xyz, const dbrg_params* params = nullptr);
 Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params = nullptr);
+// The same with dbrg_reconstruct_tiled in `tiles` slabs and the default parameters.
+Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles);
 
 // `dbrg stats` figures of the triangles over the points.
 measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles);
