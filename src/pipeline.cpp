@@ -123,7 +123,7 @@ dbrg_status to_vertex_indexing(const ConditionedPoints& conditioned, size_t coun
 dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, RegionGrower& grower, Context& context) {
     const ProgressSpan stage(context, DBRG_STAGE_FILL_HOLES);
     DBRG_PROPAGATE(stage.report(0, 1));
-    HoleFiller filler(delaunay, surface, grower.boundary_causes(), context);
+    HoleFiller filler(delaunay.points(), surface, grower.boundary_causes(), context);
     bool holes = false;
     DBRG_PROPAGATE(filler.find_holes(holes));
     if (holes) {
@@ -198,7 +198,7 @@ dbrg_status grow_from_surface(const dbrg_points* points, const uint32_t* seeds, 
         context.stats.seconds_grow = seconds_now() - start;
         start = seconds_now();
         const ProgressSpan stage(context, DBRG_STAGE_FILL_HOLES);
-        HoleFiller filler(delaunay, surface, grower.boundary_causes(), context);
+        HoleFiller filler(delaunay.points(), surface, grower.boundary_causes(), context);
         filler.keep_fixed(fixed_flags.empty() ? nullptr : fixed_flags.data());
         bool holes = false;
         DBRG_PROPAGATE(filler.find_holes(holes));

@@ -242,7 +242,7 @@ struct HandMade {
     // Hole filling's own steps in the pipeline's order; the grower's Delaunay pass has no tetrahedra to
     // start from on these faces.
     void fill_holes() {
-        HoleFiller filler(delaunay, surface, causes, context);
+        HoleFiller filler(delaunay.points(), surface, causes, context);
         const ProgressSpan progress(context, DBRG_STAGE_FILL_HOLES);
         bool found = false;
         REQUIRE(filler.find_holes(found) == DBRG_OK);
@@ -418,7 +418,7 @@ TEST_CASE("a small handle on a surface with a border is cut all the same, and th
     HandMade made(torus_points(12, 3, 1.0, 0.1), torus_faces(12, 3));
     REQUIRE(made.surface.remove_face(0));
     REQUIRE(made.boundary_halfedges() == 3);
-    HoleFiller filler(made.delaunay, made.surface, made.causes, made.context);
+    HoleFiller filler(made.delaunay.points(), made.surface, made.causes, made.context);
     REQUIRE(filler.remove_small_handles(ProgressSpan(made.context, DBRG_STAGE_FILL_HOLES)) == DBRG_OK);
     require_valid(made.surface);
     CHECK(made.context.stats.handles_removed == 1);
@@ -467,7 +467,7 @@ TEST_CASE("cutting a small handle reports inside the cuts' share, and a cancel t
         {
             HandMade made(torus_points(12, 3, 1.0, 0.1), torus_faces(12, 3), 64, allocator.get());
             made.context.progress = Progress(Reports::record, &reports);
-            HoleFiller filler(made.delaunay, made.surface, made.causes, made.context);
+            HoleFiller filler(made.delaunay.points(), made.surface, made.causes, made.context);
             status = filler.remove_small_handles(ProgressSpan(made.context, DBRG_STAGE_FILL_HOLES));
             CHECK(made.context.stats.handles_removed == (cancel ? 0 : 1));
         }

@@ -218,6 +218,66 @@ TEST_CASE("growing from a given partial surface closes it and leaves fixed point
     }
 }
 
+// A sphere's faces with a thin handle added: faces A and B, near each other but two rings apart, replaced by
+// a three-sided tube between their corners (joined in opposite turning senses, so that it stays orientable).
+std::vector<uint32_t> sphere_with_thin_handle(const std::vector<double>& xyz, std::vector<uint32_t> faces) {
+    const uint32_t* a = &faces[0];
+    std::set<uint32_t> near_a;  // A's corners and their neighbours
+    for (size_t f = 0; f < faces.size(); f += 3) {
+        if (std::count(a, a + 3, faces[f]) + std::count(a, a + 3, faces[f + 1]) + std::count(a, a + 3, faces[f + 2]) > 0) {
+            near_a.insert(&faces[f], &faces[f] + 3);
+        }
+    }
+    const auto centre = [&](size_t f) {
+        std::array<double, 3> c{};
+        for (int k = 0; k < 3; ++k)
+            for (int i = 0; i < 3; ++i) c[i] += xyz[3 * size_t(faces[f + k]) + i] / 3;
+        return c;
+    };
+    const std::array<double, 3> at_a = centre(0);
+    size_t b = 0;
+    double nearest = HUGE_VAL;
+    for (size_t f = 3; f < faces.size(); f += 3) {
+        if (near_a.count(faces[f]) + near_a.count(faces[f + 1]) + near_a.count(faces[f + 2]) > 0) continue;
+        const std::array<double, 3> c = centre(f);
+        const double d = std::hypot(c[0] - at_a[0], c[1] - at_a[1], c[2] - at_a[2]);
+        if (d < nearest) nearest = d, b = f;
+    }
+    REQUIRE(b > 0);
+    const uint32_t p = faces[0], q = faces[1], r = faces[2], d = faces[b], e = faces[b + 1], f = faces[b + 2];
+    faces.erase(faces.begin() + std::ptrdiff_t(b), faces.begin() + std::ptrdiff_t(b) + 3);
+    faces.erase(faces.begin(), faces.begin() + 3);
+    // p-d, q-f, r-e: the quads (p, q, f, d), (q, r, e, f), (r, p, d, e) split in two.
+    for (uint32_t corner : {p, q, f, p, f, d, q, r, e, q, e, f, r, p, d, r, d, e}) faces.push_back(corner);
+    return faces;
+}
+
+TEST_CASE("the assembly cuts a thin handle across the pieces as a single call would") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 3000);
+    const test::Reconstruction sphere = test::reconstruct(xyz);
+    REQUIRE(sphere.status == DBRG_OK);
+    const std::vector<uint32_t> handled = sphere_with_thin_handle(xyz, sphere.triangles);
+    REQUIRE(test::report_of(xyz, handled).genus == 1);
+
+    const test::Reconstruction assembled = test::assemble(xyz, handled);
+    REQUIRE(assembled.status == DBRG_OK);
+    const measure::MeshReport report = test::report_of(xyz, assembled.triangles);
+    test::require_valid_manifold(report);
+    CHECK(report.boundary_loops == 0);
+    CHECK(report.components == 1);
+    CHECK(report.genus == 0);
+    CHECK(assembled.stats.handles_removed == 1);
+
+    // Without hole filling there is no handle cut, in one call or in the assembly.
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.fill_holes = 0;
+    const test::Reconstruction kept = test::assemble(xyz, handled, &params);
+    REQUIRE(kept.status == DBRG_OK);
+    CHECK(test::report_of(xyz, kept.triangles).genus == 1);
+    CHECK(kept.stats.handles_removed == 0);
+}
+
 TEST_CASE("a small cloud runs as one piece: slabs thinner than their strips are merged") {
     const std::vector<double> xyz = samples::sample(samples::Shape::sphere, 500);
     const test::Reconstruction single = test::reconstruct(xyz);

@@ -540,7 +540,9 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
  * together (a walk across shared edges from the faces in sorted order; each component turned outward when
  * closed, else as region growing seeds it), puts them into one surface in the walk's order leaving out a
  * face that would break the manifold (counted in seam_faces_dropped), keeps the largest fan at a pinched
- * vertex, and hands the surface over as dbrg_reconstruct does (boundary loops, statistics). Depends on the
+ * vertex, cuts small handles as dbrg_reconstruct's hole filling does (not when params->fill_holes is 0;
+ * here because no tile or strip holds a whole closed component to find them in), and hands
+ * the surface over as dbrg_reconstruct does (boundary loops, statistics). Depends on the
  * set of faces, not their order or orientation. A whole-mesh step: it holds all points and faces, with
  * 32-bit indices.
  * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles with a count, an index past the points), or

@@ -63,6 +63,7 @@ public:
 
     uint32_t vertex_count() const { return vertex_count_; }
     const double* point(uint32_t v) const { return points_ + 3 * static_cast<size_t>(v); }
+    const double* points() const { return points_; }
 
     // Tetrahedra are numbered 0 .. tet_slots() - 1; some slots are free (deleted and not reused).
     uint32_t tet_slots() const { return static_cast<uint32_t>(vertices_.size() / 4); }

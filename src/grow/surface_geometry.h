@@ -1,6 +1,6 @@
-// The geometry of a face of the surface S, from the points of the tetrahedralization it was grown over.
-// Recomputed rather than stored: cheaper in memory, and exact copies of what growing computed. And the
-// share of the points S has reached.
+// The geometry of a face of the surface S, from its points: those of the tetrahedralization it was grown
+// over, or any other array of them with a point(v) (PointTriples). Recomputed rather than stored: cheaper
+// in memory, and exact copies of what growing computed. And the share of the points S has reached.
 #pragma once
 
 #include <stdint.h>
@@ -12,14 +12,23 @@
 
 namespace dbrg {
 
-inline Vec3 face_normal(const Tetrahedralization& delaunay, const Surface& surface, uint32_t f) {
-    return triangle_normal(delaunay.point(surface.corner(f, 0)), delaunay.point(surface.corner(f, 1)),
-                           delaunay.point(surface.corner(f, 2)));
+// Points by vertex id from x, y, z triples, for surfaces with no tetrahedralization behind them (an
+// assembled tiled mesh).
+struct PointTriples {
+    const double* xyz;
+    const double* point(uint32_t v) const { return xyz + 3 * size_t(v); }
+};
+
+template <class Points>
+Vec3 face_normal(const Points& points, const Surface& surface, uint32_t f) {
+    return triangle_normal(points.point(surface.corner(f, 0)), points.point(surface.corner(f, 1)),
+                           points.point(surface.corner(f, 2)));
 }
 
-inline double face_radius(const Tetrahedralization& delaunay, const Surface& surface, uint32_t f) {
-    return circumradius(delaunay.point(surface.corner(f, 0)), delaunay.point(surface.corner(f, 1)),
-                        delaunay.point(surface.corner(f, 2)));
+template <class Points>
+double face_radius(const Points& points, const Surface& surface, uint32_t f) {
+    return circumradius(points.point(surface.corner(f, 0)), points.point(surface.corner(f, 1)),
+                        points.point(surface.corner(f, 2)));
 }
 
 // The mean of radius(f) over the faces around both ends of `halfedge` (of a pinched end, its first fan's):

@@ -15,9 +15,8 @@
 
 namespace dbrg {
 
-HoleFiller::HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes,
-                       Context& context)
-    : delaunay_(delaunay),
+HoleFiller::HoleFiller(const double* points, Surface& surface, const BoundaryCauses& causes, Context& context)
+    : points_{points},
       surface_(surface),
       causes_(causes),
       context_(context),
@@ -114,16 +113,16 @@ bool HoleFiller::is_narrow(const Array<uint32_t>& loop) const {
     const double factor = context_.params.boundary_factor;
     if (factor == 0) return true;  // no test, no border
     Vec3 centre{0, 0, 0};
-    for (uint32_t h : loop) centre = centre + load_vec3(delaunay_.point(surface_.origin(h)));
+    for (uint32_t h : loop) centre = centre + load_vec3(points_.point(surface_.origin(h)));
     centre = (1.0 / double(loop.size())) * centre;
     Vec3 twice_area{0, 0, 0};
     double perimeter = 0, radius_sum = 0;
     for (uint32_t h : loop) {
-        const Vec3 a = load_vec3(delaunay_.point(surface_.origin(h))) - centre;
-        const Vec3 b = load_vec3(delaunay_.point(surface_.target(h))) - centre;
+        const Vec3 a = load_vec3(points_.point(surface_.origin(h))) - centre;
+        const Vec3 b = load_vec3(points_.point(surface_.target(h))) - centre;
         twice_area = twice_area + cross(a, b);
         perimeter += length(b - a);
-        radius_sum += face_radius(delaunay_, surface_, Surface::face_of(h));
+        radius_sum += face_radius(points_, surface_, Surface::face_of(h));
     }
     // width <= factor * mean radius, both sides multiplied by the perimeter and the loop's length
     return length(twice_area) * double(loop.size()) <= factor * radius_sum * perimeter;
@@ -210,10 +209,10 @@ dbrg_status HoleFiller::clip_ears(Array<uint32_t>& corners, FaceJournal& journal
             double best_radius = HUGE_VAL;
             for (size_t i = 0; i < n; ++i) {
                 const uint32_t previous = corners[(i + n - 1) % n], apex = corners[i], next = corners[(i + 1) % n];
-                const Vec3 a = load_vec3(delaunay_.point(previous)), p = load_vec3(delaunay_.point(apex)),
-                           b = load_vec3(delaunay_.point(next));
+                const Vec3 a = load_vec3(points_.point(previous)), p = load_vec3(points_.point(apex)),
+                           b = load_vec3(points_.point(next));
                 if (concave_only && n > 3 && dot(vertex_normal(apex), cross(p - a, b - p)) >= 0) continue;
-                const double r = circumradius(delaunay_.point(previous), delaunay_.point(apex), delaunay_.point(next));
+                const double r = circumradius(points_.point(previous), points_.point(apex), points_.point(next));
                 if (r < best_radius && ear_is_valid(apex, previous, next, n == 3)) {
                     best = i;
                     best_radius = r;
@@ -238,10 +237,10 @@ bool HoleFiller::ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, b
     const FaceCheck check = surface_.check_face(apex, previous, next);
     if (check.verdict != FaceCheck::valid || check.pinches > 0) return false;
     if (!closes_hole && check.shared[1] != NO_HALFEDGE) return false;
-    const Vec3 normal = triangle_normal(delaunay_.point(apex), delaunay_.point(previous), delaunay_.point(next));
+    const Vec3 normal = triangle_normal(points_.point(apex), points_.point(previous), points_.point(next));
     if (squared_length(normal) == 0) return false;
     for (uint32_t shared : check.shared) {
-        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(delaunay_, surface_, Surface::face_of(shared))) <= cos_fold_limit_) {
+        if (shared != NO_HALFEDGE && dihedral_cosine(normal, face_normal(points_, surface_, Surface::face_of(shared))) <= cos_fold_limit_) {
             return false;
         }
     }
@@ -318,7 +317,7 @@ dbrg_status HoleFiller::add_face(uint32_t a, uint32_t b, uint32_t c, uint32_t te
 // The mean of the unit normals of the faces around v (paper §5).
 Vec3 HoleFiller::vertex_normal(uint32_t v) const {
     Vec3 sum{0, 0, 0};
-    surface_.walk_vertex(v, [&](uint32_t h) { sum = sum + face_normal(delaunay_, surface_, Surface::face_of(h)); });
+    surface_.walk_vertex(v, [&](uint32_t h) { sum = sum + face_normal(points_, surface_, Surface::face_of(h)); });
     return normalized(sum);
 }
 

@@ -14,8 +14,8 @@
 #include "core/pi.h"
 #include "core/progress_span.h"
 #include "core/vec3.h"
-#include "delaunay/tetrahedralization.h"
 #include "grow/boundary_causes.h"
+#include "grow/surface_geometry.h"
 #include "holes/face_journal.h"
 #include "surface/surface.h"
 
@@ -41,9 +41,10 @@ constexpr double HANDLES_PROGRESS_CUTS = 0.8;
 
 class HoleFiller {
 public:
+    // `points`: x, y, z triples by vertex id (the tetrahedralization's that S was grown over, or any).
     // `causes` says why growing left each boundary half-edge open; it is read at every step, so it may
     // change in between (regrowing adds faces with causes of their own).
-    HoleFiller(const Tetrahedralization& delaunay, Surface& surface, const BoundaryCauses& causes, Context& context);
+    HoleFiller(const double* points, Surface& surface, const BoundaryCauses& causes, Context& context);
 
     // Loops through a vertex marked in `fixed` (NULL: none) are no holes: a fixed vertex's fan is complete
     // outside the points at hand (RegionGrower::grow_from), so such a loop is where they end.
@@ -120,7 +121,7 @@ private:
                          FaceJournal* journal);
     Vec3 vertex_normal(uint32_t v) const;
 
-    const Tetrahedralization& delaunay_;
+    const PointTriples points_;
     Surface& surface_;
     const BoundaryCauses& causes_;
     Context& context_;

@@ -452,7 +452,7 @@ dbrg_status HoleFiller::remove_small_handles(const ProgressSpan& progress) {
 }
 
 double HoleFiller::length_between(uint32_t a, uint32_t b) const {
-    return length(load_vec3(delaunay_.point(a)) - load_vec3(delaunay_.point(b)));
+    return length(load_vec3(points_.point(a)) - load_vec3(points_.point(b)));
 }
 
 // Removes the faces around the cycle's vertices, which leaves two loops where the cycle went around a

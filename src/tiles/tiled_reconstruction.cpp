@@ -12,6 +12,7 @@
 #include "points/point_conditioning.h"
 #include "points/point_input.h"
 #include "delaunay/tetrahedralization.h"
+#include "holes/hole_filling.h"
 #include "surface/surface.h"
 #include "tiles/point_spacing.h"
 #include "tiles/triangle_orientation.h"
@@ -20,6 +21,8 @@ namespace dbrg {
 namespace {
 
 const uint32_t NOT_IN_STRIP = UINT32_MAX;
+// The stitches' share of DBRG_STAGE_FILL_HOLES's progress; the assembly's handle cut takes the rest.
+constexpr double STITCH_PROGRESS = 0.9;
 
 // The axis along which the box of the points is longest.
 int longest_axis(const double* xyz, size_t count) {
@@ -346,6 +349,13 @@ dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, Context& c
     Array<uint32_t> removed(context.memory);
     if (!surface.remove_pinches(removed)) return context.fail_out_of_memory();
     context.stats.seam_faces_dropped += static_cast<uint32_t>(removed.size());
+    // The small-handle cut needs whole closed components, which no tile or strip holds: it runs here, over
+    // the assembled surface, as a single call runs it over its own.
+    if (context.params.fill_holes) {
+        const BoundaryCauses none_recorded(context.memory);
+        HoleFiller filler(xyz.data(), surface, none_recorded, context);
+        DBRG_PROPAGATE(filler.remove_small_handles(ProgressSpan(context, DBRG_STAGE_FILL_HOLES, STITCH_PROGRESS, 1.0)));
+    }
     // The caller's points as the output stage expects them: every point its own vertex.
     ConditionedPoints identity(context.memory);
     identity.coordinates.swap(xyz);
@@ -383,7 +393,8 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     for (size_t half = 0; half < 2; ++half) {
         Array<uint32_t> dropped(context.memory), added(context.memory);
         for (size_t w = half; w < walls.size(); w += 2) {
-            DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, double(w / 2 + half * ((walls.size() + 1) / 2)) / walls.size()));
+            const double stitched = double(w / 2 + half * ((walls.size() + 1) / 2)) / walls.size();
+            DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, STITCH_PROGRESS * stitched));
             DBRG_PROPAGATE(stitch_wall(xyz, mesh, plan.axis, walls[w], plan.spacing, context, dropped, added));
         }
         Array<uint8_t> drop(context.memory);

@@ -66,6 +66,14 @@ Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles)
     return result_of(status, mesh);
 }
 
+Reconstruction assemble(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles,
+                        const dbrg_params* params) {
+    const dbrg_points points = points_of(xyz);
+    dbrg_mesh* mesh = nullptr;
+    const dbrg_status status = dbrg_mesh_assemble(&points, triangles.data(), triangles.size() / 3, params, &mesh);
+    return result_of(status, mesh);
+}
+
 measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles) {
     io::MeshData mesh;
     mesh.positions = xyz;

@@ -24,6 +24,10 @@ Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params 
 // The same with dbrg_reconstruct_tiled in `tiles` slabs and the default parameters.
 Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles);
 
+// dbrg_mesh_assemble over the triangles (indices into xyz) with `params` (NULL: defaults).
+Reconstruction assemble(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles,
+                        const dbrg_params* params = nullptr);
+
 // `dbrg stats` figures of the triangles over the points.
 measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles);
 
