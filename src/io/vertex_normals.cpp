@@ -32,15 +32,17 @@ std::vector<float> vertex_normals(const std::vector<double>& positions, const st
         const Vector normal = cross(corner[1] - corner[0], corner[2] - corner[0]);
         const double area_twice = length(normal);
         if (!(area_twice > 0.0) || !std::isfinite(area_twice)) continue;
+        const Vector unit = {normal.x / area_twice, normal.y / area_twice, normal.z / area_twice};
         for (size_t k = 0; k < 3; ++k) {
             const Vector to_next = corner[(k + 1) % 3] - corner[k];
             const Vector to_previous = corner[(k + 2) % 3] - corner[k];
-            // atan2 of |u x v| and u . v stays accurate for angles near 0 and pi, where acos does not.
-            const double angle = std::atan2(length(cross(to_next, to_previous)), dot(to_next, to_previous));
+            // atan2 of |u x v| and u . v stays accurate for angles near 0 and pi, where acos does not; |u x v|
+            // at every corner is twice the area.
+            const double angle = std::atan2(area_twice, dot(to_next, to_previous));
             double* sum = &sums[3 * size_t(triangles[t + k])];
-            sum[0] += angle * normal.x / area_twice;
-            sum[1] += angle * normal.y / area_twice;
-            sum[2] += angle * normal.z / area_twice;
+            sum[0] += angle * unit.x;
+            sum[1] += angle * unit.y;
+            sum[2] += angle * unit.z;
         }
     }
     std::vector<float> normals(sums.size(), 0.0f);
