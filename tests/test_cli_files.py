@@ -11,6 +11,7 @@ import subprocess
 import sys
 import tempfile
 import threading
+import time
 import unittest
 
 DBRG = None
@@ -344,6 +345,48 @@ def read_binary_ply_face_flags(path):
         body = f.read().split(b"end_header\n", 1)[1]
     start = vertex.size * len(vertices)
     return [body[start + 14 * t + 13] for t in range(face_count)]
+
+
+class Interrupts(Folder):
+    """Ctrl-C cancels a reconstruction: exit status 130, no output, no temporary files (docs/tiles.md)."""
+
+    def interrupt(self, args, ready):
+        """Runs dbrg with `args`, sends SIGINT once ready() holds; returns (exit code, stderr)."""
+        child = subprocess.Popen([DBRG, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        try:
+            for _ in range(12000):
+                if ready() or child.poll() is not None:
+                    break
+                time.sleep(0.005)
+            if child.poll() is not None:
+                self.skipTest("the run ended before it could be interrupted")
+            child.send_signal(signal.SIGINT)
+            _, stderr = child.communicate(timeout=120)
+        finally:
+            if child.poll() is None:
+                child.kill()
+                child.wait()
+        return child.returncode, stderr
+
+    def test_out_of_core_run_removes_its_bucket_files(self):
+        cloud = self.path("cloud.xyz")
+        with open(cloud, "w") as f:
+            f.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in sphere_points(300_000))
+        code, stderr = self.interrupt(
+            ["reconstruct", cloud, "-o", self.path("mesh.ply"), "--max-memory", "64M", "-q"],
+            ready=lambda: any(name.startswith(".out.dbrg-tiles-") for name in os.listdir(self.dir)))
+        self.assertEqual(code, 128 + signal.SIGINT, stderr)
+        self.assertIn("dbrg: interrupted; no output written", stderr)
+        self.assertEqual(os.listdir(self.dir), ["cloud.xyz"])
+
+    def test_reconstruction_writes_nothing(self):
+        started = time.monotonic()
+        code, stderr = self.interrupt(
+            ["reconstruct", "--demo", "--demo-points", "400000", "-o", self.path("mesh.ply"), "-q"],
+            ready=lambda: time.monotonic() - started > 1.0)
+        self.assertEqual(code, 128 + signal.SIGINT, stderr)
+        self.assertIn("dbrg: interrupted; no output written", stderr)
+        self.assertEqual(os.listdir(self.dir), [])
 
 
 class FaceFlags(Folder):

@@ -5,9 +5,13 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 #include <random>
 #include <set>
 #include <string>
@@ -315,6 +319,85 @@ TEST_CASE("out-of-core meshes of a torus, a double torus and a saddle match the 
         }
         CHECK(folder.entries() == 2);  // the input and the mesh: the tiles' folder is gone
     }
+}
+
+TEST_CASE("a cancel stops the run between its steps or inside a slab, leaving no temporary files and the old output") {
+    Folder folder;
+    const std::string input = write_points(folder, "cloud.ply", samples::sample(samples::Shape::torus, 6000));
+    const std::string output = folder.file("mesh.ply");
+    {
+        std::FILE* old = std::fopen(output.c_str(), "wb");
+        REQUIRE(old);
+        std::fputs("the old mesh", old);
+        std::fclose(old);
+    }
+    // The k-th report cancels; reports from inside the slabs and stitches come in among the loop's own.
+    struct Countdown {
+        int left;
+        int reports = 0;
+        static int callback(void* user, dbrg_stage, double) {
+            Countdown& countdown = *static_cast<Countdown*>(user);
+            ++countdown.reports;
+            return --countdown.left <= 0;
+        }
+    };
+    Countdown whole{1 << 30};
+    out_of_core::Options options;
+    dbrg_params_init(&options.params);
+    options.tiles = 3;
+    options.params.progress = Countdown::callback;
+    options.params.progress_user = &whole;
+    out_of_core::Report report;
+    REQUIRE(out_of_core::reconstruct_file(input, folder.file("complete.ply"), options, report));
+    REQUIRE(report.tiles == 3);
+    REQUIRE(whole.reports > 20);  // far more than the loop's 3 + 3 + 2 + 1 of its own: the pieces' too
+    fs::remove(folder.file("complete.ply"));
+    for (int k : {1, 4, 8, whole.reports / 2, whole.reports - 1}) {
+        CAPTURE(k);
+        Countdown countdown{k};
+        options.params.progress_user = &countdown;
+        const io::IoStatus status = out_of_core::reconstruct_file(input, output, options, report);
+        CHECK_FALSE(status);
+        CHECK(status.message.find("cancel") != std::string::npos);
+        CHECK(countdown.reports == k);  // no report after the cancel
+        CHECK(folder.entries() == 2);   // cloud.ply and mesh.ply: no bucket folder, no output temporary
+    }
+    std::FILE* old = std::fopen(output.c_str(), "rb");
+    char text[32] = {};
+    REQUIRE(std::fread(text, 1, sizeof text - 1, old) > 0);
+    std::fclose(old);
+    CHECK(std::string(text) == "the old mesh");
+}
+
+TEST_CASE("a run removes the tile folders killed runs left beside its output, never one in use or just made") {
+    Folder folder;
+    const std::string input = write_points(folder, "cloud.ply", samples::sample(samples::Shape::torus, 3000));
+    const auto make_folder = [&](const std::string& name, bool old) {
+        fs::create_directory(folder.file(name));
+        std::FILE* bucket = std::fopen(folder.file(name + "/tile-0.points").c_str(), "wb");
+        REQUIRE(bucket);
+        std::fclose(bucket);
+        if (old) fs::last_write_time(folder.file(name), fs::file_time_type::clock::now() - std::chrono::hours(1));
+    };
+    make_folder(".out.dbrg-tiles-killed", true);
+    make_folder(".out.dbrg-tiles-in-use", true);
+    make_folder(".out.dbrg-tiles-just-made", false);
+    make_folder("not-ours", true);
+    const int in_use = open(folder.file(".out.dbrg-tiles-in-use").c_str(), O_RDONLY | O_DIRECTORY);
+    REQUIRE(in_use >= 0);
+    REQUIRE(flock(in_use, LOCK_EX) == 0);  // as the run that made it holds it
+
+    out_of_core::Options options;
+    dbrg_params_init(&options.params);
+    options.tiles = 2;
+    out_of_core::Report report;
+    REQUIRE(out_of_core::reconstruct_file(input, folder.file("mesh.ply"), options, report));
+    close(in_use);
+    CHECK_FALSE(fs::exists(folder.file(".out.dbrg-tiles-killed")));
+    CHECK(fs::exists(folder.file(".out.dbrg-tiles-in-use/tile-0.points")));
+    CHECK(fs::exists(folder.file(".out.dbrg-tiles-just-made/tile-0.points")));
+    CHECK(fs::exists(folder.file("not-ours/tile-0.points")));
+    CHECK(folder.entries() == 5);  // the input, the mesh and the three folders kept: the run's own is gone
 }
 
 TEST_CASE("a memory budget sets the number of slabs, and no tile holds more than the budget") {

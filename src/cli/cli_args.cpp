@@ -5,11 +5,17 @@
 #include <cstdlib>
 #include <cstdio>
 
+#include "cli/interrupt.h"
 #include "io/file_output.h"
 
 namespace dbrg::cli {
 
 int report_error(int exit_code, const std::string& message) {
+    // A call cancelled by Ctrl-C fails with whatever it was doing: say why it stopped instead.
+    if (interrupted()) {
+        std::fputs("dbrg: interrupted; no output written\n", stderr);
+        return interrupted_exit_code();
+    }
     std::fprintf(stderr, "dbrg: %s\n", message.c_str());
     return exit_code;
 }

@@ -12,6 +12,7 @@
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/interrupt.h"
 #include "cli/progress_bar.h"
 #include "cli/resource_usage.h"
 #include "core/pi.h"
@@ -357,6 +358,9 @@ int run_reconstruct(int argc, char** argv) {
     for (uint32_t k = 1; k <= params.snapshot_count; ++k) outputs.push_back(snapshots.path(k));
     const std::string input = args.has("--demo") ? "" : args.positional[0];
     if (!check_outputs(outputs, input, error)) return report_error(EXIT_FAILED, "reconstruct: " + error);
+    // From here a Ctrl-C cancels the reconstruction at its next progress report, which leaves no files: a
+    // file being read is read to its end first (a second Ctrl-C stops the program at once).
+    watch_interrupts();
     if (args.has("--max-memory")) return reconstruct_out_of_core(args, params, input, output);
 
     double start = seconds_now();

@@ -1,6 +1,8 @@
 // A one-line progress bar on stderr, drawn only when stderr is a terminal.
 #include "cli/progress_bar.h"
 
+#include "cli/interrupt.h"
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -29,6 +31,7 @@ ProgressBar::~ProgressBar() { finish(); }
 
 int ProgressBar::callback(void* user, dbrg_stage stage, double fraction) {
     ProgressBar& bar = *static_cast<ProgressBar*>(user);
+    if (interrupted()) return 1;  // cancels the call
     if (!bar.drawing_) return 0;
     const int permille = int(fraction * 1000);
     if (int(stage) == bar.last_stage_ && permille / 10 == bar.last_permille_ / 10) return 0;

@@ -11,7 +11,8 @@ public:
     explicit ProgressBar(bool enabled);
     ~ProgressBar();
 
-    // A dbrg_progress_fn: pass the ProgressBar as the user pointer. Never cancels.
+    // A dbrg_progress_fn: pass the ProgressBar as the user pointer. Cancels once a signal asked the
+    // program to stop (interrupt.h).
     static int callback(void* user, dbrg_stage stage, double fraction);
 
     // Clears the line; later reports draw again.

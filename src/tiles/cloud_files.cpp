@@ -8,7 +8,11 @@
 #include <unordered_map>
 
 #include <dirent.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <ctime>
 
 #include "tiles/point_spacing.h"
 
@@ -174,24 +178,64 @@ std::vector<double> sample_walls(const CloudSummary& summary, uint32_t tile_coun
     return walls;
 }
 
-TempFolder::~TempFolder() {
-    if (path_.empty()) return;
-    if (DIR* folder = opendir(path_.c_str())) {
+namespace {
+
+// A folder of temporary files younger than this is never taken for abandoned: it may be one another run
+// has just made and not yet locked.
+constexpr time_t ABANDONED_AFTER_SECONDS = 60;
+
+void remove_folder(const std::string& path) {
+    if (DIR* folder = opendir(path.c_str())) {
         while (const dirent* entry = readdir(folder)) {
             const std::string name = entry->d_name;
-            if (name != "." && name != "..") unlink(file(name).c_str());
+            if (name != "." && name != "..") unlink((path + "/" + name).c_str());
         }
         closedir(folder);
     }
-    rmdir(path_.c_str());
+    rmdir(path.c_str());
+}
+
+// Removes the folders named `prefix`... in `parent` that a killed run left: no process holds their lock
+// (the kernel lets go of a dead process's locks) and they are not new. Where the file system has no
+// locks, nothing is removed.
+void remove_abandoned(const std::string& parent, const std::string& prefix) {
+    DIR* folder = opendir(parent.c_str());
+    if (!folder) return;
+    while (const dirent* entry = readdir(folder)) {
+        const std::string name = entry->d_name;
+        if (name.compare(0, prefix.size(), prefix) != 0) continue;
+        const std::string path = parent + "/" + name;
+        const int descriptor = open(path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (descriptor < 0) continue;
+        struct stat status;
+        if (fstat(descriptor, &status) == 0 && time(nullptr) - status.st_mtime >= ABANDONED_AFTER_SECONDS &&
+            flock(descriptor, LOCK_EX | LOCK_NB) == 0) {
+            remove_folder(path);
+        }
+        close(descriptor);
+    }
+    closedir(folder);
+}
+
+} // namespace
+
+TempFolder::~TempFolder() {
+    if (path_.empty()) return;
+    remove_folder(path_);
+    if (lock_ >= 0) close(lock_);
 }
 
 io::IoStatus TempFolder::create(const std::string& parent, const std::string& stem) {
-    std::string name = parent + "/." + stem + ".dbrg-tiles-XXXXXX";
+    const std::string prefix = "." + stem + ".dbrg-tiles-";
+    remove_abandoned(parent, prefix);
+    std::string name = parent + "/" + prefix + "XXXXXX";
     if (!mkdtemp(name.data())) {
         return io::IoStatus::failure(parent + ": cannot create a folder for the tiles: " + std::strerror(errno));
     }
     path_ = name;
+    // Held until the folder goes, so that later runs can tell it from one a killed run left behind.
+    lock_ = open(path_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (lock_ >= 0) flock(lock_, LOCK_EX);
     return io::IoStatus::success();
 }
 

@@ -47,6 +47,8 @@ io::IoStatus stream_spacing(io::PointReader& reader, const CloudSummary& summary
 std::vector<double> sample_walls(const CloudSummary& summary, uint32_t tile_count, double min_width);
 
 // A folder of temporary files, removed with everything in it when the object goes (success or failure).
+// It is locked while it exists; a run killed before it could remove its folder leaves it unlocked, and the
+// next run that makes one in the same place removes it (once it is a minute old).
 class TempFolder {
 public:
     TempFolder() = default;
@@ -54,13 +56,14 @@ public:
     TempFolder(const TempFolder&) = delete;
     TempFolder& operator=(const TempFolder&) = delete;
 
-    // Creates a new folder named after `stem` inside `parent`.
+    // Creates a new folder named after `stem` inside `parent`, first removing the abandoned ones of that name.
     io::IoStatus create(const std::string& parent, const std::string& stem);
     std::string file(const std::string& name) const { return path_ + "/" + name; }
     const std::string& path() const { return path_; }
 
 private:
     std::string path_;
+    int lock_ = -1;  // the folder, opened to hold its lock
 };
 
 // A point as it lies in a bucket file: its 64-bit id and coordinates.

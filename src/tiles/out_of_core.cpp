@@ -137,17 +137,18 @@ class Run {
 public:
     Run(const std::string& input, const std::string& output, const Options& options, Report& report)
         : input_(input), output_(output), options_(options), report_(report), piece_params_(options.params) {
-        // The pieces run quietly; the loop reports its own progress.
-        piece_params_.progress = nullptr;
+        // The pieces report nothing of their own, but pass a cancel on; the loop reports its own progress.
+        piece_params_.progress = options.params.progress ? forward_cancel : nullptr;
+        piece_params_.progress_user = this;
         piece_params_.snapshot = nullptr;
         piece_params_.snapshot_count = 0;
     }
 
     IoStatus run() {
-        progress(DBRG_STAGE_VALIDATE, 0.0);
-        IoStatus status = reader_.open(input_);
+        IoStatus status = progress(DBRG_STAGE_VALIDATE, 0.0);
+        if (status) status = reader_.open(input_);
         if (status) status = summarize(reader_, summary_);
-        progress(DBRG_STAGE_VALIDATE, 0.3);
+        if (status) status = progress(DBRG_STAGE_VALIDATE, 0.3);
         if (status) status = stream_spacing(reader_, summary_, report_.spacing);
         if (!status) return status;
         report_.points = summary_.count;
@@ -155,7 +156,8 @@ public:
         spacing_ = report_.spacing;
         const double length = summary_.high[summary_.axis] - summary_.low[summary_.axis];
         const double halo_share = length > 0 ? 2 * HALO_SPACINGS * spacing_ / length : 1;
-        progress(DBRG_STAGE_VALIDATE, 0.7);
+        status = progress(DBRG_STAGE_VALIDATE, 0.7);
+        if (!status) return status;
         const uint32_t asked = options_.tiles ? options_.tiles : tiles_for_budget(summary_.count, options_.max_memory_bytes, halo_share);
         if (asked == 0) {
             return IoStatus::failure(input_ + ": " + std::to_string(options_.max_memory_bytes >> 20) +
@@ -174,18 +176,18 @@ public:
         for (uint32_t k = 0; k < tiles_; ++k) buckets.push_back(bucket(k));
         status = write_buckets(reader_, summary_.axis, walls_, HALO_SPACINGS * spacing_, buckets);
         for (uint32_t k = 0; status && k < tiles_; ++k) {
-            progress(DBRG_STAGE_GROW, double(k) / tiles_);
-            status = run_tile(k);
+            status = progress(DBRG_STAGE_GROW, double(k) / tiles_);
+            if (status) status = run_tile(k);
         }
         // The even walls, then the odd ones, as dbrg_reconstruct_tiled stitches them.
         size_t stitched = 0;
         for (size_t parity : {0, 1}) {
             for (size_t w = parity; status && w < walls_.size(); w += 2) {
-                progress(DBRG_STAGE_FILL_HOLES, double(stitched++) / walls_.size());
-                status = stitch(w);
+                status = progress(DBRG_STAGE_FILL_HOLES, double(stitched++) / walls_.size());
+                if (status) status = stitch(w);
             }
         }
-        progress(DBRG_STAGE_OUTPUT, 0.0);
+        if (status) status = progress(DBRG_STAGE_OUTPUT, 0.0);
         std::vector<PieceFacts> pieces;
         std::vector<std::vector<BorderEdge>> borders(tiles_);
         for (uint32_t k = 0; status && k < tiles_; ++k) status = orient_slab(k, pieces, borders[k]);
@@ -197,9 +199,22 @@ public:
 
 private:
     // The passes over the file as validation, the slabs as growing, the walls as hole filling and the
-    // orientation and output as output, as dbrg_reconstruct_tiled reports them. A cancel is not offered.
-    void progress(dbrg_stage stage, double fraction) const {
-        if (options_.params.progress) options_.params.progress(options_.params.progress_user, stage, fraction);
+    // orientation and output as output, as dbrg_reconstruct_tiled reports them. A failure when the
+    // callback cancels.
+    IoStatus progress(dbrg_stage stage, double fraction) {
+        stage_ = stage;
+        fraction_ = fraction;
+        if (!options_.params.progress || options_.params.progress(options_.params.progress_user, stage, fraction) == 0) {
+            return IoStatus::success();
+        }
+        return IoStatus::failure(input_ + ": cancelled");
+    }
+
+    // The pieces' callback: asks the caller's again at the loop's own stage and fraction, so that a cancel
+    // stops a slab or a stitch in its middle without the reported progress moving.
+    static int forward_cancel(void* user, dbrg_stage, double) {
+        const Run& run = *static_cast<const Run*>(user);
+        return run.options_.params.progress(run.options_.params.progress_user, run.stage_, run.fraction_);
     }
 
     std::string bucket(uint32_t k) const { return folder_.file("tile-" + std::to_string(k) + ".points"); }
@@ -555,6 +570,8 @@ private:
     std::vector<double> walls_;
     uint32_t tiles_ = 1;
     TempFolder folder_;
+    dbrg_stage stage_ = DBRG_STAGE_VALIDATE;  // where the loop last reported
+    double fraction_ = 0;
 };
 
 } // namespace

@@ -24,8 +24,8 @@ struct Options {
     // The number of slabs asked instead, when not 0 (tests; fewer run where slabs would be too thin).
     uint32_t tiles = 0;
     // The pieces' parameters; its progress callback hears the run's steps (files read as validation, slabs
-    // as growing, walls as hole filling, orientation and output as output) and cannot cancel; snapshots
-    // are not taken.
+    // as growing, walls as hole filling, orientation and output as output) and may cancel between them or
+    // within a slab or a stitch (the passes over the file finish first); snapshots are not taken.
     dbrg_params params;
 };
 
