@@ -53,6 +53,22 @@ std::string write_points(const Folder& folder, const std::string& name, const st
     return path;
 }
 
+void write_text(const std::string& path, const std::string& text) {
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    REQUIRE(file);
+    std::fputs(text.c_str(), file);
+    std::fclose(file);
+}
+
+std::string read_text(const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    REQUIRE(file);
+    char text[256] = {};
+    const size_t length = std::fread(text, 1, sizeof text - 1, file);
+    std::fclose(file);
+    return std::string(text, length);
+}
+
 std::vector<double> shuffled(const std::vector<double>& xyz) {
     std::vector<size_t> order(xyz.size() / 3);
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -203,12 +219,7 @@ TEST_CASE("a truncated or bad input fails naming the problem, leaving no tempora
     const std::vector<double> xyz = samples::sample(samples::Shape::torus, 3000);
     const std::string whole = write_points(folder, "whole.ply", xyz);
     const std::string output = folder.file("mesh.ply");
-    {
-        std::FILE* old = std::fopen(output.c_str(), "wb");
-        REQUIRE(old);
-        std::fputs("the old mesh", old);
-        std::fclose(old);
-    }
+    write_text(output, "the old mesh");
     const struct {
         std::string name;
         std::string bytes;
@@ -243,11 +254,7 @@ TEST_CASE("a truncated or bad input fails naming the problem, leaving no tempora
         CHECK(folder.entries() == 3);  // whole.ply, mesh.ply and the input: no bucket or output temporary
         fs::remove(input);
     }
-    std::FILE* old = std::fopen(output.c_str(), "rb");
-    char text[32] = {};
-    REQUIRE(std::fread(text, 1, sizeof text - 1, old) > 0);
-    std::fclose(old);
-    CHECK(std::string(text) == "the old mesh");
+    CHECK(read_text(output) == "the old mesh");  // the old output, untouched
 }
 
 namespace {
@@ -325,12 +332,7 @@ TEST_CASE("a cancel stops the run between its steps or inside a slab, leaving no
     Folder folder;
     const std::string input = write_points(folder, "cloud.ply", samples::sample(samples::Shape::torus, 6000));
     const std::string output = folder.file("mesh.ply");
-    {
-        std::FILE* old = std::fopen(output.c_str(), "wb");
-        REQUIRE(old);
-        std::fputs("the old mesh", old);
-        std::fclose(old);
-    }
+    write_text(output, "the old mesh");
     // The k-th report cancels; reports from inside the slabs and stitches come in among the loop's own.
     struct Countdown {
         int left;
@@ -362,11 +364,7 @@ TEST_CASE("a cancel stops the run between its steps or inside a slab, leaving no
         CHECK(countdown.reports == k);  // no report after the cancel
         CHECK(folder.entries() == 2);   // cloud.ply and mesh.ply: no bucket folder, no output temporary
     }
-    std::FILE* old = std::fopen(output.c_str(), "rb");
-    char text[32] = {};
-    REQUIRE(std::fread(text, 1, sizeof text - 1, old) > 0);
-    std::fclose(old);
-    CHECK(std::string(text) == "the old mesh");
+    CHECK(read_text(output) == "the old mesh");  // the old output, untouched
 }
 
 TEST_CASE("a run removes the tile folders killed runs left beside its output, never one in use or just made") {
