@@ -518,6 +518,10 @@ DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_
                                     i / 3, triangles[i], points->count);
             }
             mesh[i] = triangles[i];
+            // A surface has no such face (it would corrupt the surface's fans).
+            if (i % 3 == 2 && (mesh[i] == mesh[i - 1] || mesh[i] == mesh[i - 2] || mesh[i - 1] == mesh[i - 2])) {
+                return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangle %zu repeats a corner", i / 3);
+            }
         }
         context.stats.input_points = static_cast<uint32_t>(points->count);
         context.stats.unique_points = static_cast<uint32_t>(points->count);

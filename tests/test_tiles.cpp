@@ -568,6 +568,10 @@ TEST_CASE("the tiling steps check their arguments") {
     CHECK(std::string(dbrg_mesh_message(mesh)) ==
           "triangle 0 uses the index " + std::to_string(ids.size()) + ", past the " + std::to_string(ids.size()) + " points");
     dbrg_mesh_destroy(mesh);
+    const uint32_t degenerate[] = {0, 1, 2, 3, 4, 3};  // the second repeats a corner
+    CHECK(dbrg_mesh_assemble(&points, degenerate, 2, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(std::string(dbrg_mesh_message(mesh)) == "triangle 1 repeats a corner");
+    dbrg_mesh_destroy(mesh);
     CHECK(dbrg_mesh_assemble(&points, nullptr, 1, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
     dbrg_mesh_destroy(mesh);
     CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, nullptr) == DBRG_ERR_INVALID_ARGUMENT);

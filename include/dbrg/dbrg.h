@@ -545,8 +545,8 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
  * the surface over as dbrg_reconstruct does (boundary loops, statistics). Depends on the
  * set of faces, not their order or orientation. A whole-mesh step: it holds all points and faces, with
  * 32-bit indices.
- * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles with a count, an index past the points), or
- * the status of dbrg_reconstruct for bad points.
+ * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles with a count, an index past the points, a
+ * triangle repeating a corner), or the status of dbrg_reconstruct for bad points.
  * points: the whole cloud; read during the call only.
  * triangles: 3 * triangle_count indices into `points`. May be NULL when triangle_count is 0.
  * params, out_mesh: as in dbrg_reconstruct. */

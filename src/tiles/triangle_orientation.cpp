@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include <algorithm>
+#include <functional>
 
 #include "core/vec3.h"
 #include "grow/triangle_geometry.h"
@@ -25,17 +26,68 @@ struct EdgeUse {
     uint8_t forward;  // the face runs low -> high
 };
 
+// Writes item(i) for i < count to `out` sorted by `less`, where `less` orders first by key(item), an index
+// below `keys`: a counting sort by the key, then a sort of each key's group. The keys here are vertices and
+// a group a vertex's fan, a few items: a third of the time of sorting all the items at once.
+template <class T, class Item, class Key, class Less>
+bool sort_by_vertex(size_t count, size_t keys, const Item& item, const Key& key, const Less& less, Memory& memory,
+                    Array<T>& out) {
+    Array<uint32_t> first(memory);  // where each key's group starts in `out`
+    if (!first.resize(keys + 1, 0) || !out.resize(count)) return false;
+    for (size_t i = 0; i < count; ++i) ++first[size_t(key(item(i))) + 1];
+    for (size_t k = 0; k < keys; ++k) first[k + 1] += first[k];
+    // Filed with first[k] as the cursor, which ends where group k + 1 starts; then moved back.
+    for (size_t i = 0; i < count; ++i) {
+        const T value = item(i);
+        out[first[key(value)]++] = value;
+    }
+    for (size_t k = keys; k > 0; --k) first[k] = first[k - 1];
+    first[0] = 0;
+    for (size_t k = 0; k < keys; ++k) {
+        T* begin = out.begin() + first[k];
+        T* end = out.begin() + first[k + 1];
+        if (end - begin > 16) {
+            std::sort(begin, end, less);
+            continue;
+        }
+        for (T* at = begin + 1; at < end; ++at) {  // insertion sort: cheaper than std::sort's set-up
+            const T value = *at;
+            T* to = at;
+            for (; to > begin && less(value, to[-1]); --to) *to = to[-1];
+            *to = value;
+        }
+    }
+    return true;
+}
+
+// One past the largest index of `triangles`.
+size_t vertex_bound(const Array<uint32_t>& triangles) {
+    uint32_t largest = 0;
+    for (uint32_t v : triangles) largest = std::max(largest, v);
+    return triangles.empty() ? 0 : size_t(largest) + 1;
+}
+
 // Rotates each triangle to start at its smallest index and sorts them.
-bool canonical_order(Array<uint32_t>& triangles, Array<Triangle>& sorted) {
-    const size_t faces = triangles.size() / 3;
-    if (!sorted.resize(faces)) return false;
-    for (size_t f = 0; f < faces; ++f) {
+bool canonical_order(const Array<uint32_t>& triangles, size_t vertices, Memory& memory, Array<Triangle>& sorted) {
+    const auto rotated = [&](size_t f) {
         const uint32_t* t = triangles.data() + 3 * f;
         const uint32_t first = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
-        for (uint32_t i = 0; i < 3; ++i) sorted[f].v[i] = t[(first + i) % 3];
-    }
-    std::sort(sorted.begin(), sorted.end());
-    return true;
+        return Triangle{{t[first], t[(first + 1) % 3], t[(first + 2) % 3]}};
+    };
+    return sort_by_vertex(triangles.size() / 3, vertices, rotated, [](const Triangle& t) { return t.v[0]; },
+                          std::less<Triangle>(), memory, sorted);
+}
+
+// Every face's use of each of its edges, sorted by the edge (lower end, upper end), then by face.
+bool sorted_edge_uses(const Array<Triangle>& faces, size_t vertices, Memory& memory, Array<EdgeUse>& uses) {
+    const auto use = [&](size_t u) {
+        const uint32_t a = faces[u / 3].v[u % 3], b = faces[u / 3].v[(u + 1) % 3];
+        return EdgeUse{std::min(a, b), std::max(a, b), uint32_t(u / 3), uint8_t(a < b)};
+    };
+    const auto less = [](const EdgeUse& x, const EdgeUse& y) {
+        return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.face < y.face;
+    };
+    return sort_by_vertex(3 * faces.size(), vertices, use, [](const EdgeUse& e) { return e.low; }, less, memory, uses);
 }
 
 // Whether face t, turned over when `flip`, faces up by the seeding rule (+z, else +x, else +y).
@@ -50,27 +102,19 @@ bool faces_up(const Triangle& t, bool flip, const double* xyz) {
 } // namespace
 
 dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, bool turn_up, Context& context) {
+    const size_t vertices = vertex_bound(triangles);
     Array<Triangle> faces(context.memory);
-    if (!canonical_order(triangles, faces)) return context.fail_out_of_memory();
+    if (!canonical_order(triangles, vertices, context.memory, faces)) return context.fail_out_of_memory();
     const uint32_t count = static_cast<uint32_t>(faces.size());
 
     // Neighbours across the edges exactly two faces share, and whether they run it the same way.
     Array<EdgeUse> uses(context.memory);
     Array<uint32_t> neighbour(context.memory);
     Array<uint8_t> same_way(context.memory);
-    if (!uses.reserve(3 * size_t(count)) || !neighbour.resize(3 * size_t(count), NO_NEIGHBOUR) ||
-        !same_way.resize(3 * size_t(count), 0)) {
+    if (!sorted_edge_uses(faces, vertices, context.memory, uses) ||
+        !neighbour.resize(3 * size_t(count), NO_NEIGHBOUR) || !same_way.resize(3 * size_t(count), 0)) {
         return context.fail_out_of_memory();
     }
-    for (uint32_t f = 0; f < count; ++f) {
-        for (uint32_t i = 0; i < 3; ++i) {
-            const uint32_t a = faces[f].v[i], b = faces[f].v[(i + 1) % 3];
-            uses.push_back({std::min(a, b), std::max(a, b), f, uint8_t(a < b)});
-        }
-    }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-        return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.face < y.face;
-    });
     const auto slot = [&](uint32_t f) {
         uint32_t s = 3 * f;
         while (neighbour[s] != NO_NEIGHBOUR) ++s;

@@ -76,40 +76,47 @@ def _view(xyz):
     return xyz, _capi.dbrg_points(xyz.ctypes.data, len(xyz), 24, _capi.ENUMS["dbrg_scalar_type"]["DBRG_FLOAT64"])
 
 
-def _tile_result(lib, status, handle):
-    """The triangles of a dbrg_tile_mesh as an (M, 3) uint64 array of global ids; raises on failure."""
+def _index_type(count):
+    """The narrowest unsigned type that holds the ids of `count` points. Ids and faces travel between the
+    client and the tasks in it: half the bytes of uint64 below 2^32 points."""
+    return np.uint32 if count <= 2 ** 32 else np.uint64
+
+
+def _tile_result(lib, status, handle, index_type):
+    """The triangles of a dbrg_tile_mesh as an (M, 3) array of global ids of `index_type`; raises on failure."""
     if status != _OK:
         raise _error(lib, status, lib.dbrg_tile_mesh_message(handle) if handle else b"")
     count = lib.dbrg_tile_mesh_triangle_count(handle)
     pointer = lib.dbrg_tile_mesh_triangles(handle)
     if count == 0:
-        return np.empty((0, 3), dtype=np.uint64)
-    return np.ctypeslib.as_array(pointer, shape=(count, 3)).copy()
+        return np.empty((0, 3), dtype=index_type)
+    return np.ctypeslib.as_array(pointer, shape=(count, 3)).astype(index_type)
 
 
 def tile_task(xyz, ids, low, high, options):
     """A tile: dbrg_reconstruct_tile on its points (core and halo) with their global ids. Returns the
-    owned faces as an (M, 3) uint64 array of global ids."""
+    owned faces as an (M, 3) array of global ids, of the ids' type."""
     lib = library()
     xyz, view = _view(xyz)
-    ids = np.ascontiguousarray(ids, dtype=np.uint64)
+    index_type, ids = ids.dtype, np.ascontiguousarray(ids, dtype=np.uint64)
     params = _params(lib, threads=1, **options)
     handle = _capi.tile_mesh_p()
     core_low, core_high = (ctypes.c_double * 3)(*low), (ctypes.c_double * 3)(*high)
     status = lib.dbrg_reconstruct_tile(ctypes.byref(view), ids.ctypes.data_as(_capi.u64_p), core_low, core_high,
                                        ctypes.byref(params), ctypes.byref(handle))
     try:
-        return _tile_result(lib, status, handle)
+        return _tile_result(lib, status, handle, index_type)
     finally:
         lib.dbrg_tile_mesh_destroy(handle)
 
 
 def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
     """A wall's stitch: dbrg_seam_stitch on the points and faces near the wall (global ids). Returns
-    (dropped, added): the indices into `faces` of the faces to drop, and the (K, 3) uint64 faces to add."""
+    (dropped, added): the indices into `faces` of the faces to drop, and the (K, 3) faces to add, of the
+    ids' type."""
     lib = library()
     xyz, view = _view(xyz)
-    ids = np.ascontiguousarray(ids, dtype=np.uint64)
+    index_type, ids = ids.dtype, np.ascontiguousarray(ids, dtype=np.uint64)
     faces = np.ascontiguousarray(faces, dtype=np.uint64)
     tiling = _capi.dbrg_tiling()
     tiling.struct_size = ctypes.sizeof(tiling)
@@ -121,7 +128,7 @@ def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
                                   faces.ctypes.data_as(_capi.u64_p), len(faces), ctypes.byref(tiling), wall,
                                   ctypes.byref(params), ctypes.byref(handle))
     try:
-        added = _tile_result(lib, status, handle)
+        added = _tile_result(lib, status, handle, index_type)
         count = ctypes.c_uint64()
         pointer = lib.dbrg_tile_mesh_dropped(handle, ctypes.byref(count))
         dropped = np.ctypeslib.as_array(pointer, shape=(count.value,)).astype(np.int64) if count.value else \
@@ -131,17 +138,37 @@ def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
         lib.dbrg_tile_mesh_destroy(handle)
 
 
-def _seam_input(xyz, faces, axis, wall, reach):
-    """What a stitch of `wall` is sent, as dbrg_seam_stitch asks: the points within `reach` of the wall,
-    the faces touching them or sharing a corner with such a face, and those faces' corners. Returns
-    (indices of the faces in `faces`, global ids of the points)."""
-    near = np.abs(xyz[:, axis] - wall) < reach
-    marked = near.copy()
-    marked[faces[near[faces].any(axis=1)].ravel()] = True
-    given = np.flatnonzero(marked[faces].any(axis=1))
-    wanted = near.copy()
-    wanted[faces[given].ravel()] = True
-    return given, np.flatnonzero(wanted).astype(np.uint64)
+def _seam_inputs(coordinate, faces, walls, reach):
+    """What each stitch of a half is sent, as dbrg_seam_stitch asks: the points within `reach` of its wall
+    (`coordinate`: the points' coordinates on the plan's axis), the faces touching them or sharing a corner
+    with such a face, and those faces' corners. Yields (indices of the faces in `faces`, ids of the points,
+    ascending) for each wall in turn, so that its stitch can start while the next wall's input is found.
+
+    Two passes over all the faces serve the whole half: every face a stitch is sent has a corner near one of
+    the walls or a corner of a face that has one (`marked`); each wall then looks at those few faces only."""
+    near = [np.flatnonzero(np.abs(coordinate - wall) < reach) for wall in walls]
+    marked = np.zeros(len(coordinate), dtype=bool)
+    for points in near:
+        marked[points] = True
+    marked[faces[_any_corner(marked, faces)]] = True
+    candidates = np.flatnonzero(_any_corner(marked, faces))
+    nearby = faces[candidates]
+    for points in near:
+        marked[:] = False
+        marked[points] = True
+        marked[nearby[_any_corner(marked, nearby)]] = True
+        given = _any_corner(marked, nearby)
+        marked[:] = False
+        marked[points] = True
+        marked[nearby[given]] = True
+        yield candidates[given], np.flatnonzero(marked)
+
+
+def _any_corner(mask, faces):
+    """Whether each of `faces` has a corner where `mask` (one flag a point) holds. (Three column ors:
+    numpy's any() over an axis of length 3 takes several times as long.)"""
+    flags = mask[faces]
+    return flags[:, 0] | flags[:, 1] | flags[:, 2]
 
 
 def _open_client(client, scheduler, n_workers, memory_limit):
@@ -217,26 +244,29 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
 
 
 def _tiles(client, array, cut, options, progress):
-    """Every tile's owned faces, concatenated in tile order: an (F, 3) uint64 array of point indices."""
+    """Every tile's owned faces, concatenated in tile order: an (F, 3) array of point indices (_index_type).
+    Each tile is sent as soon as its points are cut, so the first tiles run while the next are cut. (Tasks
+    are submitted as impure: their keys are not hashed from their arguments, megabytes of points.)"""
     coordinate = array[:, cut.axis]
+    index_type = _index_type(len(array))
     futures = []
     for k in range(len(cut.walls) + 1):
         low, high = cut.core(k)
         inside = np.flatnonzero((coordinate >= low[cut.axis] - cut.halo) & (coordinate < high[cut.axis] + cut.halo))
-        futures.append(client.submit(tile_task, array[inside], inside.astype(np.uint64), low, high, options))
+        futures.append(client.submit(tile_task, array[inside], inside.astype(index_type), low, high, options,
+                                     pure=False))
     return np.concatenate(_wait(client, futures, progress))
 
 
 def _stitch_half(client, array, faces, cut, walls, options, progress):
     """The faces after stitching `walls` (a half: two slabs apart, so their stitches touch disjoint faces),
     each stitch on `faces` as they are."""
-    index = faces.astype(np.int64)
     futures, given_faces = [], []
-    for wall in walls:
-        given, ids = _seam_input(array, index, cut.axis, wall, cut.seam_reach)
+    inputs = _seam_inputs(array[:, cut.axis], faces, walls, cut.seam_reach)
+    for wall, (given, ids) in zip(walls, inputs):
         given_faces.append(given)
-        futures.append(client.submit(stitch_task, array[ids.astype(np.int64)], ids, faces[given], cut.axis,
-                                     cut.spacing, wall, options))
+        futures.append(client.submit(stitch_task, array[ids], ids.astype(faces.dtype), faces[given], cut.axis,
+                                     cut.spacing, wall, options, pure=False))
     results = _wait(client, futures, progress)
     keep = np.ones(len(faces), dtype=bool)
     added = []

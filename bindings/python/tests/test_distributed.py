@@ -89,6 +89,37 @@ class KillOnFirstTile(WorkerPlugin):
             os._exit(1)
 
 
+def seam_input_by_definition(xyz, faces, axis, wall, reach):
+    """What dbrg_seam_stitch asks to be sent for `wall`, read off its contract one wall at a time: the points
+    within `reach`, the faces touching them or sharing a corner with such a face, and those faces' corners."""
+    near = np.abs(xyz[:, axis] - wall) < reach
+    marked = near.copy()
+    marked[faces[near[faces].any(axis=1)]] = True
+    given = np.flatnonzero(marked[faces].any(axis=1))
+    wanted = near.copy()
+    wanted[faces[given]] = True
+    return given, np.flatnonzero(wanted)
+
+
+@unittest.skipIf(distributed is None, MISSING if distributed is None else "")
+class SeamInputs(unittest.TestCase):
+    def test_each_wall_gets_what_its_stitch_asks(self):
+        # The tiled loop's faces, and long random ones that reach across several walls and share corners
+        # with faces far from any wall.
+        points = torus(6000)
+        cut = dbrg_distributed.plan(points, TILES)
+        rng = np.random.default_rng(2)
+        faces = np.concatenate([c_loop(points, TILES).triangles,
+                                rng.integers(0, len(points), size=(300, 3))]).astype(np.uint32)
+        for walls in (cut.walls[0::2], cut.walls[1::2]):
+            found = list(dbrg_distributed._seam_inputs(points[:, cut.axis], faces, walls, cut.seam_reach))
+            self.assertEqual(len(found), len(walls))
+            for wall, (given, ids) in zip(walls, found):
+                expected_given, expected_ids = seam_input_by_definition(points, faces, cut.axis, wall, cut.seam_reach)
+                self.assertTrue(np.array_equal(given, expected_given))
+                self.assertTrue(np.array_equal(ids, expected_ids))
+
+
 @unittest.skipIf(distributed is None, MISSING if distributed is None else "")
 class Distributed(unittest.TestCase):
     @classmethod
