@@ -29,8 +29,8 @@ template <class Box>
 double squared_distance_to_box(const double* p, const Box& box) {
     double sum = 0;
     for (int a = 0; a < 3; ++a) {
-        const double below = box.lo[a] - p[a], above = p[a] - box.hi[a];
-        const double d = below > 0 ? below : above > 0 ? above : 0.0;
+        // At most one of the two is positive (lo <= hi), so this is the one that is, or 0.
+        const double d = std::max(std::max(box.lo[a] - p[a], p[a] - box.hi[a]), 0.0);
         sum += d * d;
     }
     return sum;
@@ -50,8 +50,10 @@ Box box_of(const double* xyz, const uint32_t* indices, size_t n) {
     return box;
 }
 
+} // namespace
+
 // The k nearest found so far, nearest first, and among equal distances the smaller index first.
-struct Candidates {
+struct NeighbourIndex::Candidates {
     uint32_t k = 0, size = 0;
     // The k-th distance once k are found, infinity until then: nothing farther can enter.
     double bound = INFINITY;
@@ -72,7 +74,37 @@ struct Candidates {
     }
 };
 
-} // namespace
+// The k + 1 nearest found so far, nearest first; an equal distance goes after those already there (the order
+// among equal distances is settled at the end). Only a point strictly nearer than the bound enters: when the
+// bound is the k + 1-th distance, one at that distance cannot be among the k nearest unless the k-th is equal
+// too, and then the answer is not taken from here.
+struct NeighbourIndex::Gathered {
+    uint32_t wanted = 0, size = 0;
+    double bound = INFINITY;
+    double distance[MAX_NEIGHBOURS + 1];
+    uint32_t index[MAX_NEIGHBOURS + 1];
+
+    void offer(double d, uint32_t i) {
+        if (!(d < bound)) return;
+        uint32_t at = size == wanted ? size - 1 : size++;
+        while (at > 0 && distance[at - 1] > d) {
+            distance[at] = distance[at - 1];
+            index[at] = index[at - 1];
+            --at;
+        }
+        distance[at] = d;
+        index[at] = i;
+        if (size == wanted) bound = distance[wanted - 1];
+    }
+    // Puts equal distances in the order of their indices.
+    void settle_ties() {
+        for (uint32_t j = 1; j < size; ++j) {
+            for (uint32_t at = j; at > 0 && distance[at - 1] == distance[at] && index[at - 1] > index[at]; --at) {
+                std::swap(index[at - 1], index[at]);
+            }
+        }
+    }
+};
 
 size_t NeighbourIndex::range_begin(uint32_t node, int level) const {
     return part_begin(count_, 1u << level, node - (1u << level));
@@ -122,8 +154,13 @@ dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const Progr
     const uint32_t leaves = 1u << depth_;
     if (!leaf_begin_.resize(size_t(leaves) + 1)) return context.fail_out_of_memory();
     for (uint32_t leaf = 0; leaf <= leaves; ++leaf) leaf_begin_[leaf] = uint32_t(range_begin(leaves + leaf, depth_));
+    if (!leaf_of_.resize(count) || !leaf_xyz_.resize(3 * size_t(count))) return context.fail_out_of_memory();
     for (uint32_t node = leaves; node < 2 * leaves; ++node) {
         const size_t begin = leaf_begin_[node - leaves], end = leaf_begin_[node - leaves + 1];
+        for (size_t position = begin; position < end; ++position) {
+            leaf_of_[order_[position]] = node - leaves;
+            for (int a = 0; a < 3; ++a) leaf_xyz_[3 * position + a] = xyz[3 * size_t(order_[position]) + a];
+        }
         boxes_[node] = box_of<Box>(xyz, order_.data() + begin, end - begin);
     }
     for (uint32_t node = leaves - 1; node >= 1; --node) {
@@ -136,11 +173,10 @@ dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const Progr
     return progress.report(1, 1);
 }
 
-uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) const {
-    Candidates found;
-    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
-    if (found.k == 0) return 0;
-    const double* q = xyz_ + 3 * size_t(query);
+// Offers to `found` the points of the subtree under `node` that may be strictly nearer to q than its bound,
+// nearest child first, `query` itself left out.
+template <class Found>
+void NeighbourIndex::search(const double* q, uint32_t query, uint32_t node, Found& found) const {
     const uint32_t leaves = 1u << depth_;
     struct Pending {
         uint32_t node;
@@ -149,13 +185,12 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) cons
     // The farther child of each node on the way down waits here: at most one a level.
     Pending stack[32];
     uint32_t top = 0;
-    uint32_t node = 1;
     for (;;) {
         if (node >= leaves) {
             const uint32_t leaf = node - leaves;
             for (uint32_t position = leaf_begin_[leaf]; position < leaf_begin_[leaf + 1]; ++position) {
                 const uint32_t p = order_[position];
-                if (p != query) found.offer(squared_distance(q, xyz_ + 3 * size_t(p)), p);
+                if (p != query) found.offer(squared_distance(q, leaf_xyz_.data() + 3 * size_t(position)), p);
             }
         } else {
             const uint32_t left = 2 * node, right = left + 1;
@@ -174,6 +209,34 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) cons
         if (top == 0) break;
         node = stack[--top].node;
     }
+}
+
+uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) const {
+    k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (k == 0) return 0;
+    const double* q = xyz_ + 3 * size_t(query);
+    // First the k + 1 nearest, from the query's own leaf outwards, so that the bound is tight from the start.
+    // When the (k + 1)-th is strictly farther than the k-th, the k nearest are the only k points that near,
+    // whatever the order of the search; among equal distances at the k-th, though, which points the search
+    // from the root keeps depends on its order (it skips a node exactly at the bound), so it runs again.
+    if (k < count_ - 1) {
+        Gathered gathered;
+        gathered.wanted = k + 1;
+        uint32_t node = (1u << depth_) + leaf_of_[query];
+        search(q, query, node, gathered);
+        for (; node > 1; node >>= 1) {
+            const uint32_t sibling = node ^ 1;
+            if (squared_distance_to_box(q, boxes_[sibling]) < gathered.bound) search(q, query, sibling, gathered);
+        }
+        if (gathered.distance[k - 1] < gathered.distance[k]) {
+            gathered.settle_ties();
+            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j];
+            return k;
+        }
+    }
+    Candidates found;
+    found.k = k;
+    search(q, query, 1, found);
     for (uint32_t j = 0; j < found.size; ++j) out[j] = found.index[j];
     return found.size;
 }

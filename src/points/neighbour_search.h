@@ -20,7 +20,8 @@ constexpr uint32_t MAX_NEIGHBOURS = 32;
 // any number of threads and, for points numbered by their coordinates (conditioned points), any input order.
 class NeighbourIndex {
 public:
-    explicit NeighbourIndex(Memory& memory) : order_(memory), leaf_begin_(memory), boxes_(memory) {}
+    explicit NeighbourIndex(Memory& memory) : order_(memory), leaf_begin_(memory), boxes_(memory), leaf_of_(memory),
+          leaf_xyz_(memory) {}
 
     // Builds the tree with up to context.params.threads threads. Reports to `progress`; returns DBRG_OK,
     // DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
@@ -36,7 +37,11 @@ private:
     struct Box {
         double lo[3], hi[3];
     };
+    struct Candidates;
+    struct Gathered;
     size_t range_begin(uint32_t node, int level) const;
+    template <class Found>
+    void search(const double* q, uint32_t query, uint32_t node, Found& found) const;
     void split_level(int level, uint32_t parts);
 
     // The tree in heap layout: node 1 holds points order_[0 .. count_), node v's children are 2v and 2v + 1,
@@ -48,6 +53,9 @@ private:
     // Leaf l (node 2^depth_ + l) holds positions leaf_begin_[l] .. leaf_begin_[l + 1] of order_.
     Array<uint32_t> leaf_begin_;
     Array<Box> boxes_;
+    // The leaf holding each point, and the points' coordinates in the order of order_.
+    Array<uint32_t> leaf_of_;
+    Array<double> leaf_xyz_;
 };
 
 // The k nearest neighbours of every point: neighbours[k * i + j] is the (j + 1)-th nearest neighbour of point
