@@ -53,7 +53,7 @@ private:
     // Leaf l (node 2^depth_ + l) holds positions leaf_begin_[l] .. leaf_begin_[l + 1] of order_.
     Array<uint32_t> leaf_begin_;
     Array<Box> boxes_;
-    // The leaf holding each point, and the points' coordinates in the order of order_.
+    // The leaf holding each point, and the points' x coordinates in the order of order_, then their y, then z.
     Array<uint32_t> leaf_of_;
     Array<double> leaf_xyz_;
 };
