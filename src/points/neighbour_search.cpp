@@ -74,55 +74,35 @@ struct NeighbourIndex::Candidates {
     }
 };
 
-// The k + 1 nearest found so far: the first k + 1 offered as they come, then in a max-heap on distance (a
-// replacement costs a few steps down the heap where an insertion into a sorted list moves about half of it),
-// sorted at the end. Only a point strictly nearer than the bound enters: when the bound is the k + 1-th
-// distance, one at that distance is among the k nearest only if the k-th is the same too, and then the answer
-// is not taken from here.
+// The k + 1 nearest found so far, nearest first; an equal distance goes after those already there (the order
+// among equal distances is settled at the end). Only a point strictly nearer than the bound enters: when the
+// bound is the k + 1-th distance, one at that distance cannot be among the k nearest unless the k-th is equal
+// too, and then the answer is not taken from here.
 struct NeighbourIndex::Gathered {
-    struct Entry {
-        double distance;
-        uint32_t index;
-    };
     uint32_t wanted = 0, size = 0;
     double bound = INFINITY;
-    Entry entry[MAX_NEIGHBOURS + 1];
+    double distance[MAX_NEIGHBOURS + 1];
+    uint32_t index[MAX_NEIGHBOURS + 1];
 
     void offer(double d, uint32_t i) {
         if (!(d < bound)) return;
-        if (size < wanted) {
-            entry[size++] = Entry{d, i};
-            if (size < wanted) return;
-            for (uint32_t at = size / 2; at-- > 0;) sift_down(at, entry[at], size);
-        } else {
-            sift_down(0, Entry{d, i}, size);
+        uint32_t at = size == wanted ? size - 1 : size++;
+        while (at > 0 && distance[at - 1] > d) {
+            distance[at] = distance[at - 1];
+            index[at] = index[at - 1];
+            --at;
         }
-        bound = entry[0].distance;
+        distance[at] = d;
+        index[at] = i;
+        if (size == wanted) bound = distance[wanted - 1];
     }
-    // Puts `e` at `at` or below, in the heap of the first `end` entries.
-    void sift_down(uint32_t at, Entry e, uint32_t end) {
-        for (uint32_t child = 2 * at + 1; child < end; child = 2 * at + 1) {
-            if (child + 1 < end && entry[child + 1].distance > entry[child].distance) ++child;
-            if (!(entry[child].distance > e.distance)) break;
-            entry[at] = entry[child];
-            at = child;
-        }
-        entry[at] = e;
-    }
-    // Sorts the candidates by distance, and equal distances by index: farthest first (the heap is about that
-    // order already), then reversed.
-    void sort() {
+    // Puts equal distances in the order of their indices.
+    void settle_ties() {
         for (uint32_t j = 1; j < size; ++j) {
-            const Entry e = entry[j];
-            uint32_t at = j;
-            for (; at > 0 && (entry[at - 1].distance < e.distance ||
-                              (entry[at - 1].distance == e.distance && entry[at - 1].index < e.index));
-                 --at) {
-                entry[at] = entry[at - 1];
+            for (uint32_t at = j; at > 0 && distance[at - 1] == distance[at] && index[at - 1] > index[at]; --at) {
+                std::swap(index[at - 1], index[at]);
             }
-            entry[at] = e;
         }
-        std::reverse(entry, entry + size);
     }
 };
 
@@ -258,9 +238,9 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) cons
             const uint32_t sibling = node ^ 1;
             if (squared_distance_to_box(q, boxes_[sibling]) < gathered.bound) search(q, query, sibling, gathered);
         }
-        gathered.sort();
-        if (gathered.entry[k - 1].distance < gathered.entry[k].distance) {
-            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.entry[j].index;
+        if (gathered.distance[k - 1] < gathered.distance[k]) {
+            gathered.settle_ties();
+            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j];
             return k;
         }
     }
