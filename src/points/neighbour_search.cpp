@@ -81,25 +81,25 @@ struct NeighbourIndex::Candidates {
 struct NeighbourIndex::Gathered {
     uint32_t wanted = 0, size = 0;
     double bound = INFINITY;
-    double distance[MAX_NEIGHBOURS + 1];
-    uint32_t index[MAX_NEIGHBOURS + 1];
+    // The candidates are at 1 .. size; distance[0] is below any distance, so that an insertion stops there.
+    double distance[MAX_NEIGHBOURS + 2] = {-1};
+    uint32_t index[MAX_NEIGHBOURS + 2];
 
     void offer(double d, uint32_t i) {
         if (!(d < bound)) return;
-        uint32_t at = size == wanted ? size - 1 : size++;
-        while (at > 0 && distance[at - 1] > d) {
+        uint32_t at = size == wanted ? size : ++size;
+        for (; distance[at - 1] > d; --at) {
             distance[at] = distance[at - 1];
             index[at] = index[at - 1];
-            --at;
         }
         distance[at] = d;
         index[at] = i;
-        if (size == wanted) bound = distance[wanted - 1];
+        if (size == wanted) bound = distance[wanted];
     }
     // Puts equal distances in the order of their indices.
     void settle_ties() {
-        for (uint32_t j = 1; j < size; ++j) {
-            for (uint32_t at = j; at > 0 && distance[at - 1] == distance[at] && index[at - 1] > index[at]; --at) {
+        for (uint32_t j = 2; j <= size; ++j) {
+            for (uint32_t at = j; at > 1 && distance[at - 1] == distance[at] && index[at - 1] > index[at]; --at) {
                 std::swap(index[at - 1], index[at]);
             }
         }
@@ -221,26 +221,39 @@ void NeighbourIndex::search(const double* q, uint32_t query, uint32_t node, Foun
     }
 }
 
-uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) const {
+uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, NearestHint* hint) const {
     k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
     if (k == 0) return 0;
     const double* q = xyz_ + 3 * size_t(query);
-    // First the k + 1 nearest, from the query's own leaf outwards, so that the bound is tight from the start.
-    // When the (k + 1)-th is strictly farther than the k-th, the k nearest are the only k points that near,
-    // whatever the order of the search; among equal distances at the k-th, though, which points the search
-    // from the root keeps depends on its order (it skips a node exactly at the bound), so it runs again.
+    // First the k + 1 nearest, from the query's own leaf outwards. When the (k + 1)-th is strictly farther than
+    // the k-th, the k nearest are the only k points that near, whatever the order of the search; among equal
+    // distances at the k-th, though, which points the search from the root keeps depends on its order (it
+    // skips a node exactly at the bound), so it runs again.
     if (k < count_ - 1) {
         Gathered gathered;
         gathered.wanted = k + 1;
-        uint32_t node = (1u << depth_) + leaf_of_[query];
-        search(q, query, node, gathered);
-        for (; node > 1; node >>= 1) {
-            const uint32_t sibling = node ^ 1;
-            if (squared_distance_to_box(q, boxes_[sibling]) < gathered.bound) search(q, query, sibling, gathered);
+        // The last query's k + 1 nearest and itself, less this query, are k + 1 points within its reach plus
+        // the way from there: a bound to start from (a little above it, for the rounding). Should fewer than
+        // k + 1 be nearer than that after all, the search runs again without it.
+        if (hint != nullptr && hint->k == k && hint->query < count_) {
+            const double reach = (hint->reach + sqrt(squared_distance(q, xyz_ + 3 * size_t(hint->query)))) * (1 + 0x1p-40);
+            gathered.bound = reach * reach;
         }
-        if (gathered.distance[k - 1] < gathered.distance[k]) {
+        for (;;) {
+            uint32_t node = (1u << depth_) + leaf_of_[query];
+            search(q, query, node, gathered);
+            for (; node > 1; node >>= 1) {
+                const uint32_t sibling = node ^ 1;
+                if (squared_distance_to_box(q, boxes_[sibling]) < gathered.bound) search(q, query, sibling, gathered);
+            }
+            if (gathered.size > k) break;
+            gathered.size = 0;
+            gathered.bound = INFINITY;
+        }
+        if (hint != nullptr) *hint = NearestHint{query, k, sqrt(gathered.distance[k + 1])};
+        if (gathered.distance[k] < gathered.distance[k + 1]) {
             gathered.settle_ties();
-            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j];
+            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j + 1];
             return k;
         }
     }
@@ -266,8 +279,9 @@ dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted
         DBRG_PROPAGATE(progress.report(first, count));
         const size_t last = std::min(size_t(count), first + step);
         for_each_slice(last - first, parts, [&](size_t begin, size_t end) {
+            NearestHint hint;
             for (size_t i = first + begin; i < first + end; ++i) {
-                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i);
+                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i, &hint);
             }
         });
     }

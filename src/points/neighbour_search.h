@@ -18,6 +18,14 @@ constexpr uint32_t MAX_NEIGHBOURS = 32;
 // among equal distances it keeps the points it meets first, ties in one leaf going to the smaller index. The
 // tree and the searches depend on the coordinates and their numbering only, so the answers are the same for
 // any number of threads and, for points numbered by their coordinates (conditioned points), any input order.
+// What one search tells the next about where to stop: its query and the distance to that query's k + 1-th
+// nearest. A search from a query near the last one (as consecutive points along the Hilbert curve are) visits
+// fewer points.
+struct NearestHint {
+    uint32_t query = UINT32_MAX, k = 0;
+    double reach = 0;
+};
+
 class NeighbourIndex {
 public:
     explicit NeighbourIndex(Memory& memory) : order_(memory), leaf_begin_(memory), boxes_(memory), leaf_of_(memory),
@@ -29,7 +37,9 @@ public:
 
     // Writes the min(k, count - 1) nearest neighbours of point `query` to `out`, nearest first, the point
     // itself left out, and returns how many. k is at most MAX_NEIGHBOURS. Safe to call from several threads.
-    uint32_t nearest(uint32_t query, uint32_t k, uint32_t* out) const;
+    // `hint`, if not null, is read and then set for the next query (any query may follow any: the answers do
+    // not depend on it).
+    uint32_t nearest(uint32_t query, uint32_t k, uint32_t* out, NearestHint* hint = nullptr) const;
 
     uint32_t size() const { return count_; }
 
