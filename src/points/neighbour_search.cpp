@@ -257,9 +257,14 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, Near
             return k;
         }
     }
+    return nearest_from_root(query, k, out);
+}
+
+uint32_t NeighbourIndex::nearest_from_root(uint32_t query, uint32_t k, uint32_t* out) const {
     Candidates found;
-    found.k = k;
-    search(q, query, 1, found);
+    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (found.k == 0) return 0;
+    search(xyz_ + 3 * size_t(query), query, 1, found);
     for (uint32_t j = 0; j < found.size; ++j) out[j] = found.index[j];
     return found.size;
 }

@@ -12,12 +12,6 @@ namespace dbrg {
 // The most neighbours a search may ask for.
 constexpr uint32_t MAX_NEIGHBOURS = 32;
 
-// A k-d tree over `count` distinct points (x, y, z triples, which must outlive it) answering k-nearest-
-// neighbour queries. A search prunes every part of the tree not strictly nearer than the k-th neighbour found
-// so far, so a point among many equal distances (a grid, a sphere's centre) costs about what any other does;
-// among equal distances it keeps the points it meets first, ties in one leaf going to the smaller index. The
-// tree and the searches depend on the coordinates and their numbering only, so the answers are the same for
-// any number of threads and, for points numbered by their coordinates (conditioned points), any input order.
 // What one search tells the next about where to stop: its query and the distance to that query's k + 1-th
 // nearest. A search from a query near the last one (as consecutive points along the Hilbert curve are) visits
 // fewer points.
@@ -26,10 +20,17 @@ struct NearestHint {
     double reach = 0;
 };
 
+// A k-d tree over `count` distinct points (x, y, z triples, which must outlive it) answering k-nearest-
+// neighbour queries. A search prunes every part of the tree not strictly nearer than the k-th neighbour found
+// so far, so a point among many equal distances (a grid, a sphere's centre) costs about what any other does;
+// among equal distances at the k-th it keeps the points a search from the root meets first, ties in one leaf
+// going to the smaller index. The tree and the searches depend on the coordinates and their numbering only, so
+// the answers are the same for any number of threads and, for points numbered by their coordinates
+// (conditioned points), any input order.
 class NeighbourIndex {
 public:
-    explicit NeighbourIndex(Memory& memory) : order_(memory), leaf_begin_(memory), boxes_(memory), leaf_of_(memory),
-          leaf_xyz_(memory) {}
+    explicit NeighbourIndex(Memory& memory)
+        : order_(memory), leaf_begin_(memory), boxes_(memory), leaf_of_(memory), leaf_xyz_(memory) {}
 
     // Builds the tree with up to context.params.threads threads. Reports to `progress`; returns DBRG_OK,
     // DBRG_ERR_OUT_OF_MEMORY or DBRG_ERR_CANCELLED.
@@ -40,6 +41,10 @@ public:
     // `hint`, if not null, is read and then set for the next query (any query may follow any: the answers do
     // not depend on it).
     uint32_t nearest(uint32_t query, uint32_t k, uint32_t* out, NearestHint* hint = nullptr) const;
+    // The same answer through one search from the root, nearest child first, skipping a node at exactly the
+    // bound: where the k-th distance is shared with the (k + 1)-th, this is the search that decides which points
+    // among the equal ones `nearest` gives.
+    uint32_t nearest_from_root(uint32_t query, uint32_t k, uint32_t* out) const;
 
     uint32_t size() const { return count_; }
 
