@@ -82,8 +82,10 @@ struct NeighbourIndex::Gathered {
     uint32_t wanted = 0, size = 0;
     double bound = INFINITY;
     // The candidates are at 1 .. size; distance[0] is below any distance, so that an insertion stops there.
-    double distance[MAX_NEIGHBOURS + 2] = {-1};
+    double distance[MAX_NEIGHBOURS + 2];
     uint32_t index[MAX_NEIGHBOURS + 2];
+
+    Gathered() { distance[0] = -1; }
 
     void offer(double d, uint32_t i) {
         if (!(d < bound)) return;
