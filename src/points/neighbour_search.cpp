@@ -36,15 +36,14 @@ double squared_distance_to_box(const double* p, const Box& box) {
     return sum;
 }
 
-template <class Box>
-Box box_of(const double* xyz, const uint32_t* indices, size_t n) {
+template <class Box, class Point>
+Box box_of(const Point* points, size_t n) {
     Box box;
-    for (int a = 0; a < 3; ++a) box.lo[a] = box.hi[a] = xyz[3 * size_t(indices[0]) + a];
+    for (int a = 0; a < 3; ++a) box.lo[a] = box.hi[a] = points[0].xyz[a];
     for (size_t i = 1; i < n; ++i) {
-        const double* p = xyz + 3 * size_t(indices[i]);
         for (int a = 0; a < 3; ++a) {
-            box.lo[a] = std::min(box.lo[a], p[a]);
-            box.hi[a] = std::max(box.hi[a], p[a]);
+            box.lo[a] = std::min(box.lo[a], points[i].xyz[a]);
+            box.hi[a] = std::max(box.hi[a], points[i].xyz[a]);
         }
     }
     return box;
@@ -113,25 +112,23 @@ size_t NeighbourIndex::range_begin(uint32_t node, int level) const {
 }
 
 // Splits every node of one level at the median of its widest axis (ties by index, so the split depends on
-// the coordinates and the numbering only).
-void NeighbourIndex::split_level(int level, uint32_t parts) {
+// the coordinates and the numbering only: the halves are the same sets whatever order a node's points are
+// in). The points move with their coordinates, which the comparisons then read in order.
+void NeighbourIndex::split_level(int level, uint32_t parts, TreePoint* points) const {
     const uint32_t nodes = 1u << level;
-    const double* xyz = xyz_;
     for_each_slice(nodes, parts, [&](size_t first, size_t last) {
         for (size_t position = first; position < last; ++position) {
             const uint32_t node = nodes + static_cast<uint32_t>(position);
             const size_t begin = range_begin(node, level), end = range_begin(node + 1, level);
             if (end - begin < 2) continue;
-            uint32_t* indices = order_.data();
-            const Box box = box_of<Box>(xyz, indices + begin, end - begin);
+            const Box box = box_of<Box>(points + begin, end - begin);
             int axis = 0;
             for (int a = 1; a < 3; ++a) {
                 if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
             }
             const size_t middle = range_begin(2 * node + 1, level + 1);
-            std::nth_element(indices + begin, indices + middle, indices + end, [xyz, axis](uint32_t a, uint32_t b) {
-                const double u = xyz[3 * size_t(a) + axis], v = xyz[3 * size_t(b) + axis];
-                return u < v || (u == v && a < b);
+            std::nth_element(points + begin, points + middle, points + end, [axis](const TreePoint& a, const TreePoint& b) {
+                return a.xyz[axis] < b.xyz[axis] || (a.xyz[axis] == b.xyz[axis] && a.index < b.index);
             });
         }
     });
@@ -143,27 +140,30 @@ dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const Progr
     count_ = count;
     depth_ = 0;
     while ((size_t(count) + (size_t(1) << depth_) - 1) >> depth_ > LEAF_POINTS) ++depth_;
-    if (!order_.resize(count) || !boxes_.resize(size_t(2) << depth_)) return context.fail_out_of_memory();
-    for (uint32_t i = 0; i < count; ++i) order_[i] = i;
+    const uint32_t leaves = 1u << depth_;
+    Array<TreePoint> points(context.memory);
+    if (!points.resize(count) || !order_.resize(count) || !boxes_.resize(size_t(2) << depth_) ||
+        !leaf_begin_.resize(size_t(leaves) + 1) || !leaf_of_.resize(count) || !leaf_xyz_.resize(3 * size_t(count))) {
+        return context.fail_out_of_memory();
+    }
     if (count == 0) return progress.report(1, 1);
+    for (uint32_t i = 0; i < count; ++i) points[i] = TreePoint{{xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]}, i};
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     for (int level = 0; level < depth_; ++level) {
         DBRG_PROPAGATE(progress.report(size_t(level), size_t(depth_) + 1));
-        split_level(level, parts);
+        split_level(level, parts, points.data());
     }
     // Boxes bottom-up: a leaf's from its points, a node's from its children's. No leaf is empty: the depth is
     // the smallest with at most LEAF_POINTS a leaf, so count >= leaves.
-    const uint32_t leaves = 1u << depth_;
-    if (!leaf_begin_.resize(size_t(leaves) + 1)) return context.fail_out_of_memory();
     for (uint32_t leaf = 0; leaf <= leaves; ++leaf) leaf_begin_[leaf] = uint32_t(range_begin(leaves + leaf, depth_));
-    if (!leaf_of_.resize(count) || !leaf_xyz_.resize(3 * size_t(count))) return context.fail_out_of_memory();
-    for (uint32_t node = leaves; node < 2 * leaves; ++node) {
-        const size_t begin = leaf_begin_[node - leaves], end = leaf_begin_[node - leaves + 1];
+    for (uint32_t leaf = 0; leaf < leaves; ++leaf) {
+        const size_t begin = leaf_begin_[leaf], end = leaf_begin_[leaf + 1];
         for (size_t position = begin; position < end; ++position) {
-            leaf_of_[order_[position]] = node - leaves;
-            for (int a = 0; a < 3; ++a) leaf_xyz_[a * size_t(count) + position] = xyz[3 * size_t(order_[position]) + a];
+            order_[position] = points[position].index;
+            leaf_of_[points[position].index] = leaf;
+            for (int a = 0; a < 3; ++a) leaf_xyz_[a * size_t(count) + position] = points[position].xyz[a];
         }
-        boxes_[node] = box_of<Box>(xyz, order_.data() + begin, end - begin);
+        boxes_[leaves + leaf] = box_of<Box>(points.data() + begin, end - begin);
     }
     for (uint32_t node = leaves - 1; node >= 1; --node) {
         const Box &a = boxes_[2 * node], &b = boxes_[2 * node + 1];

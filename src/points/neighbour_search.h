@@ -52,12 +52,17 @@ private:
     struct Box {
         double lo[3], hi[3];
     };
+    // A point and its coordinates, moved together while the tree is built.
+    struct TreePoint {
+        double xyz[3];
+        uint32_t index;
+    };
     struct Candidates;
     struct Gathered;
     size_t range_begin(uint32_t node, int level) const;
     template <class Found>
     void search(const double* q, uint32_t query, uint32_t node, Found& found) const;
-    void split_level(int level, uint32_t parts);
+    void split_level(int level, uint32_t parts, TreePoint* points) const;
 
     // The tree in heap layout: node 1 holds points order_[0 .. count_), node v's children are 2v and 2v + 1,
     // each with half of v's range (the first the smaller half); the nodes at depth_ are the leaves.
