@@ -199,10 +199,16 @@ void NeighbourIndex::search(const double* q, uint32_t query, uint32_t node, Foun
                 const double dx = q[0] - x[j], dy = q[1] - y[j], dz = q[2] - z[j];
                 distance[j] = dx * dx + dy * dy + dz * dz;
             }
+            // Those not beyond the bound as the leaf begins, listed without a branch (about which way it goes
+            // there is no telling), then offered.
+            uint32_t near[LEAF_POINTS], m = 0;
             for (uint32_t j = 0; j < n; ++j) {
-                if (distance[j] > found.bound) continue;
-                const uint32_t p = order_[begin + j];
-                if (p != query) found.offer(distance[j], p);
+                near[m] = j;
+                m += !(distance[j] > found.bound);
+            }
+            for (uint32_t t = 0; t < m; ++t) {
+                const uint32_t p = order_[begin + near[t]];
+                if (p != query) found.offer(distance[near[t]], p);
             }
         } else {
             const uint32_t left = 2 * node, right = left + 1;
