@@ -19,6 +19,9 @@ namespace {
 // than descending further for a handful of points (16 measured faster than 8 or 4, and as fast as 32, for
 // searches of 16 neighbours).
 constexpr uint32_t LEAF_POINTS = 16;
+// Queries searched from the root alone after one with a tie at the k-th distance (on a grid nearly all have
+// one, and the search from the query's leaf is then wasted).
+constexpr uint32_t ROOT_SEARCHES_AFTER_TIE = 8;
 
 double squared_distance(const double* a, const double* b) {
     const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -127,9 +130,10 @@ void NeighbourIndex::split_level(int level, uint32_t parts, TreePoint* points) c
                 if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
             }
             const size_t middle = range_begin(2 * node + 1, level + 1);
-            std::nth_element(points + begin, points + middle, points + end, [axis](const TreePoint& a, const TreePoint& b) {
+            const auto below = [axis](const TreePoint& a, const TreePoint& b) {
                 return a.xyz[axis] < b.xyz[axis] || (a.xyz[axis] == b.xyz[axis] && a.index < b.index);
-            });
+            };
+            std::nth_element(points + begin, points + middle, points + end, below);
         }
     });
 }
@@ -147,7 +151,10 @@ dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const Progr
         return context.fail_out_of_memory();
     }
     if (count == 0) return progress.report(1, 1);
-    for (uint32_t i = 0; i < count; ++i) points[i] = TreePoint{{xyz[3 * size_t(i)], xyz[3 * size_t(i) + 1], xyz[3 * size_t(i) + 2]}, i};
+    for (uint32_t i = 0; i < count; ++i) {
+        const double* p = xyz + 3 * size_t(i);
+        points[i] = TreePoint{{p[0], p[1], p[2]}, i};
+    }
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     for (int level = 0; level < depth_; ++level) {
         DBRG_PROPAGATE(progress.report(size_t(level), size_t(depth_) + 1));
@@ -237,6 +244,12 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, Near
     // the k-th, the k nearest are the only k points that near, whatever the order of the search; among equal
     // distances at the k-th, though, which points the search from the root keeps depends on its order (it
     // skips a node exactly at the bound), so it runs again.
+    // After a tie at the k-th distance the next queries likely have one too (a grid): they go to the search
+    // from the root at once for a while.
+    if (hint != nullptr && hint->from_root > 0) {
+        --hint->from_root;
+        return nearest_from_root(query, k, out);
+    }
     if (k < count_ - 1) {
         Gathered gathered;
         gathered.wanted = k + 1;
@@ -244,7 +257,8 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, Near
         // the way from there: a bound to start from (a little above it, for the rounding). Should fewer than
         // k + 1 be nearer than that after all, the search runs again without it.
         if (hint != nullptr && hint->k == k && hint->query < count_) {
-            const double reach = (hint->reach + sqrt(squared_distance(q, xyz_ + 3 * size_t(hint->query)))) * (1 + 0x1p-40);
+            const double way = sqrt(squared_distance(q, xyz_ + 3 * size_t(hint->query)));
+            const double reach = (hint->reach + way) * (1 + 0x1p-40);
             gathered.bound = reach * reach;
         }
         for (;;) {
@@ -258,8 +272,11 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, Near
             gathered.size = 0;
             gathered.bound = INFINITY;
         }
-        if (hint != nullptr) *hint = NearestHint{query, k, sqrt(gathered.distance[k + 1])};
-        if (gathered.distance[k] < gathered.distance[k + 1]) {
+        const bool tied = !(gathered.distance[k] < gathered.distance[k + 1]);
+        if (hint != nullptr) {
+            *hint = NearestHint{query, k, sqrt(gathered.distance[k + 1]), tied ? ROOT_SEARCHES_AFTER_TIE : 0};
+        }
+        if (!tied) {
             gathered.settle_ties();
             for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j + 1];
             return k;

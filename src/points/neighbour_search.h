@@ -12,12 +12,13 @@ namespace dbrg {
 // The most neighbours a search may ask for.
 constexpr uint32_t MAX_NEIGHBOURS = 32;
 
-// What one search tells the next about where to stop: its query and the distance to that query's k + 1-th
-// nearest. A search from a query near the last one (as consecutive points along the Hilbert curve are) visits
-// fewer points.
+// What one search tells the next: where to stop (its query and the distance to that query's k + 1-th nearest;
+// a search from a query near the last one, as consecutive points along the Hilbert curve are, visits fewer
+// points), and whether equal distances are common.
 struct NearestHint {
     uint32_t query = UINT32_MAX, k = 0;
     double reach = 0;
+    uint32_t from_root = 0;  // queries still to search from the root alone (after a tie at the k-th distance)
 };
 
 // A k-d tree over `count` distinct points (x, y, z triples, which must outlive it) answering k-nearest-
