@@ -1,6 +1,7 @@
 // Tests of the point-cleaning stage's neighbour search and local fit: the k nearest neighbours against brute
-// force (random points, a lattice full of equal distances), the same answer on one thread and two, allocation
-// failure and cancelling; the local quadric fit on exact surfaces, lines and single spots, in any frame.
+// force (random points, a lattice full of equal distances) and against the search from the root, the same
+// answer on one thread and two, allocation failure and cancelling; the local quadric fit on exact surfaces,
+// lines and single spots, in any frame.
 #include <doctest/doctest.h>
 
 #include <stdint.h>
@@ -24,21 +25,25 @@ double squared_distance(const std::vector<double>& xyz, size_t a, size_t b) {
 }
 
 // Every point's neighbours are k distinct other points, nearest first, and their distances are the k
-// smallest distances to the other points (which points among equal distances is the search's choice).
+// smallest distances to the other points. Where the k-th distance is not also the (k + 1)-th, they are exactly
+// the k nearest, equal distances in the order of their indices; otherwise which of the equal ones is the
+// search's choice.
 void check_against_brute_force(const std::vector<double>& xyz, uint32_t k, const Array<uint32_t>& neighbours) {
     const size_t n = xyz.size() / 3;
     REQUIRE(neighbours.size() == k * n);
-    std::vector<double> all;
+    std::vector<std::pair<double, uint32_t>> all;
     for (size_t i = 0; i < n; ++i) {
         all.clear();
         for (size_t j = 0; j < n; ++j) {
-            if (j != i) all.push_back(squared_distance(xyz, i, j));
+            if (j != i) all.emplace_back(squared_distance(xyz, i, j), uint32_t(j));
         }
         std::sort(all.begin(), all.end());
         std::vector<uint32_t> found(neighbours.begin() + k * i, neighbours.begin() + k * (i + 1));
+        const bool tied = k < all.size() && all[k - 1].first == all[k].first;
         for (uint32_t j = 0; j < k; ++j) {
             CHECK(found[j] != i);
-            CHECK(squared_distance(xyz, i, found[j]) == all[j]);
+            CHECK(squared_distance(xyz, i, found[j]) == all[j].first);
+            if (!tied) CHECK(found[j] == all[j].second);
         }
         std::sort(found.begin(), found.end());
         CHECK(std::adjacent_find(found.begin(), found.end()) == found.end());
@@ -81,6 +86,37 @@ TEST_CASE("k nearest neighbours agree with brute force, equal distances too") {
                                             ProgressSpan(context, DBRG_STAGE_CLEAN), k, neighbours) == DBRG_OK);
             CHECK(k == wanted);
             check_against_brute_force(xyz, k, neighbours);
+        }
+    }
+}
+
+TEST_CASE("k nearest neighbours: the search from the query's leaf gives what one from the root gives") {
+    // Lattices have many points at the k-th distance, where the answer is the root search's choice; the
+    // queries come in a scrambled order with one hint passed along, which must not change any answer.
+    for (const std::vector<double>& xyz : {random_sphere(3000, 5), lattice(12, 0.0, 0), cube_surface_lattice(14),
+                                           lattice(10, 0.5, 6)}) {
+        const uint32_t n = uint32_t(xyz.size() / 3);
+        Context context(test_params());
+        NeighbourIndex index(context.memory);
+        REQUIRE(index.build(xyz.data(), n, ProgressSpan(context, DBRG_STAGE_CLEAN)) == DBRG_OK);
+        std::vector<uint32_t> queries(n);
+        for (uint32_t i = 0; i < n; ++i) queries[i] = i;
+        Random random(7);
+        for (uint32_t i = n; i > 1; --i) std::swap(queries[i - 1], queries[uint32_t(random.uniform() * i)]);
+        for (uint32_t k : {1u, 6u, 16u, 32u}) {
+            CAPTURE(n);
+            CAPTURE(k);
+            NearestHint hint;
+            for (uint32_t query : queries) {
+                uint32_t fast[MAX_NEIGHBOURS], root[MAX_NEIGHBOURS];
+                REQUIRE(index.nearest(query, k, fast, &hint) == k);
+                REQUIRE(index.nearest_from_root(query, k, root) == k);
+                CHECK(std::equal(fast, fast + k, root));
+                // A hint that promises too much (nothing nearer than the query itself): searched again.
+                NearestHint wrong{query, k, 0.0};
+                REQUIRE(index.nearest(query, k, fast, &wrong) == k);
+                CHECK(std::equal(fast, fast + k, root));
+            }
         }
     }
 }

@@ -19,6 +19,9 @@ namespace {
 // than descending further for a handful of points (16 measured faster than 8 or 4, and as fast as 32, for
 // searches of 16 neighbours).
 constexpr uint32_t LEAF_POINTS = 16;
+// Queries searched from the root alone after one with a tie at the k-th distance (on a grid nearly all have
+// one, and the search from the query's leaf is then wasted).
+constexpr uint32_t ROOT_SEARCHES_AFTER_TIE = 8;
 
 double squared_distance(const double* a, const double* b) {
     const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -29,29 +32,30 @@ template <class Box>
 double squared_distance_to_box(const double* p, const Box& box) {
     double sum = 0;
     for (int a = 0; a < 3; ++a) {
-        const double below = box.lo[a] - p[a], above = p[a] - box.hi[a];
-        const double d = below > 0 ? below : above > 0 ? above : 0.0;
+        // At most one of the two is positive (lo <= hi), so this is the one that is, or 0.
+        const double d = std::max(std::max(box.lo[a] - p[a], p[a] - box.hi[a]), 0.0);
         sum += d * d;
     }
     return sum;
 }
 
-template <class Box>
-Box box_of(const double* xyz, const uint32_t* indices, size_t n) {
+template <class Box, class Point>
+Box box_of(const Point* points, size_t n) {
     Box box;
-    for (int a = 0; a < 3; ++a) box.lo[a] = box.hi[a] = xyz[3 * size_t(indices[0]) + a];
+    for (int a = 0; a < 3; ++a) box.lo[a] = box.hi[a] = points[0].xyz[a];
     for (size_t i = 1; i < n; ++i) {
-        const double* p = xyz + 3 * size_t(indices[i]);
         for (int a = 0; a < 3; ++a) {
-            box.lo[a] = std::min(box.lo[a], p[a]);
-            box.hi[a] = std::max(box.hi[a], p[a]);
+            box.lo[a] = std::min(box.lo[a], points[i].xyz[a]);
+            box.hi[a] = std::max(box.hi[a], points[i].xyz[a]);
         }
     }
     return box;
 }
 
+} // namespace
+
 // The k nearest found so far, nearest first, and among equal distances the smaller index first.
-struct Candidates {
+struct NeighbourIndex::Candidates {
     uint32_t k = 0, size = 0;
     // The k-th distance once k are found, infinity until then: nothing farther can enter.
     double bound = INFINITY;
@@ -72,33 +76,64 @@ struct Candidates {
     }
 };
 
-} // namespace
+// The k + 1 nearest found so far, nearest first; an equal distance goes after those already there (the order
+// among equal distances is settled at the end). Only a point strictly nearer than the bound enters: when the
+// bound is the k + 1-th distance, one at that distance cannot be among the k nearest unless the k-th is equal
+// too, and then the answer is not taken from here.
+struct NeighbourIndex::Gathered {
+    uint32_t wanted = 0, size = 0;
+    double bound = INFINITY;
+    // The candidates are at 1 .. size; distance[0] is below any distance, so that an insertion stops there.
+    double distance[MAX_NEIGHBOURS + 2];
+    uint32_t index[MAX_NEIGHBOURS + 2];
+
+    Gathered() { distance[0] = -1; }
+
+    void offer(double d, uint32_t i) {
+        if (!(d < bound)) return;
+        uint32_t at = size == wanted ? size : ++size;
+        for (; distance[at - 1] > d; --at) {
+            distance[at] = distance[at - 1];
+            index[at] = index[at - 1];
+        }
+        distance[at] = d;
+        index[at] = i;
+        if (size == wanted) bound = distance[wanted];
+    }
+    // Puts equal distances in the order of their indices.
+    void settle_ties() {
+        for (uint32_t j = 2; j <= size; ++j) {
+            for (uint32_t at = j; at > 1 && distance[at - 1] == distance[at] && index[at - 1] > index[at]; --at) {
+                std::swap(index[at - 1], index[at]);
+            }
+        }
+    }
+};
 
 size_t NeighbourIndex::range_begin(uint32_t node, int level) const {
     return part_begin(count_, 1u << level, node - (1u << level));
 }
 
 // Splits every node of one level at the median of its widest axis (ties by index, so the split depends on
-// the coordinates and the numbering only).
-void NeighbourIndex::split_level(int level, uint32_t parts) {
+// the coordinates and the numbering only: the halves are the same sets whatever order a node's points are
+// in). The points move with their coordinates, which the comparisons then read in order.
+void NeighbourIndex::split_level(int level, uint32_t parts, TreePoint* points) const {
     const uint32_t nodes = 1u << level;
-    const double* xyz = xyz_;
     for_each_slice(nodes, parts, [&](size_t first, size_t last) {
         for (size_t position = first; position < last; ++position) {
             const uint32_t node = nodes + static_cast<uint32_t>(position);
             const size_t begin = range_begin(node, level), end = range_begin(node + 1, level);
             if (end - begin < 2) continue;
-            uint32_t* indices = order_.data();
-            const Box box = box_of<Box>(xyz, indices + begin, end - begin);
+            const Box box = box_of<Box>(points + begin, end - begin);
             int axis = 0;
             for (int a = 1; a < 3; ++a) {
                 if (box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]) axis = a;
             }
             const size_t middle = range_begin(2 * node + 1, level + 1);
-            std::nth_element(indices + begin, indices + middle, indices + end, [xyz, axis](uint32_t a, uint32_t b) {
-                const double u = xyz[3 * size_t(a) + axis], v = xyz[3 * size_t(b) + axis];
-                return u < v || (u == v && a < b);
-            });
+            const auto below = [axis](const TreePoint& a, const TreePoint& b) {
+                return a.xyz[axis] < b.xyz[axis] || (a.xyz[axis] == b.xyz[axis] && a.index < b.index);
+            };
+            std::nth_element(points + begin, points + middle, points + end, below);
         }
     });
 }
@@ -109,22 +144,33 @@ dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const Progr
     count_ = count;
     depth_ = 0;
     while ((size_t(count) + (size_t(1) << depth_) - 1) >> depth_ > LEAF_POINTS) ++depth_;
-    if (!order_.resize(count) || !boxes_.resize(size_t(2) << depth_)) return context.fail_out_of_memory();
-    for (uint32_t i = 0; i < count; ++i) order_[i] = i;
+    const uint32_t leaves = 1u << depth_;
+    Array<TreePoint> points(context.memory);
+    if (!points.resize(count) || !order_.resize(count) || !boxes_.resize(size_t(2) << depth_) ||
+        !leaf_begin_.resize(size_t(leaves) + 1) || !leaf_of_.resize(count) || !leaf_xyz_.resize(3 * size_t(count))) {
+        return context.fail_out_of_memory();
+    }
     if (count == 0) return progress.report(1, 1);
+    for (uint32_t i = 0; i < count; ++i) {
+        const double* p = xyz + 3 * size_t(i);
+        points[i] = TreePoint{{p[0], p[1], p[2]}, i};
+    }
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     for (int level = 0; level < depth_; ++level) {
         DBRG_PROPAGATE(progress.report(size_t(level), size_t(depth_) + 1));
-        split_level(level, parts);
+        split_level(level, parts, points.data());
     }
     // Boxes bottom-up: a leaf's from its points, a node's from its children's. No leaf is empty: the depth is
     // the smallest with at most LEAF_POINTS a leaf, so count >= leaves.
-    const uint32_t leaves = 1u << depth_;
-    if (!leaf_begin_.resize(size_t(leaves) + 1)) return context.fail_out_of_memory();
     for (uint32_t leaf = 0; leaf <= leaves; ++leaf) leaf_begin_[leaf] = uint32_t(range_begin(leaves + leaf, depth_));
-    for (uint32_t node = leaves; node < 2 * leaves; ++node) {
-        const size_t begin = leaf_begin_[node - leaves], end = leaf_begin_[node - leaves + 1];
-        boxes_[node] = box_of<Box>(xyz, order_.data() + begin, end - begin);
+    for (uint32_t leaf = 0; leaf < leaves; ++leaf) {
+        const size_t begin = leaf_begin_[leaf], end = leaf_begin_[leaf + 1];
+        for (size_t position = begin; position < end; ++position) {
+            order_[position] = points[position].index;
+            leaf_of_[points[position].index] = leaf;
+            for (int a = 0; a < 3; ++a) leaf_xyz_[a * size_t(count) + position] = points[position].xyz[a];
+        }
+        boxes_[leaves + leaf] = box_of<Box>(points.data() + begin, end - begin);
     }
     for (uint32_t node = leaves - 1; node >= 1; --node) {
         const Box &a = boxes_[2 * node], &b = boxes_[2 * node + 1];
@@ -136,11 +182,10 @@ dbrg_status NeighbourIndex::build(const double* xyz, uint32_t count, const Progr
     return progress.report(1, 1);
 }
 
-uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) const {
-    Candidates found;
-    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
-    if (found.k == 0) return 0;
-    const double* q = xyz_ + 3 * size_t(query);
+// Offers to `found` the points of the subtree under `node` that may be strictly nearer to q than its bound,
+// nearest child first, `query` itself left out.
+template <class Found>
+void NeighbourIndex::search(const double* q, uint32_t query, uint32_t node, Found& found) const {
     const uint32_t leaves = 1u << depth_;
     struct Pending {
         uint32_t node;
@@ -149,13 +194,28 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) cons
     // The farther child of each node on the way down waits here: at most one a level.
     Pending stack[32];
     uint32_t top = 0;
-    uint32_t node = 1;
     for (;;) {
         if (node >= leaves) {
             const uint32_t leaf = node - leaves;
-            for (uint32_t position = leaf_begin_[leaf]; position < leaf_begin_[leaf + 1]; ++position) {
-                const uint32_t p = order_[position];
-                if (p != query) found.offer(squared_distance(q, xyz_ + 3 * size_t(p)), p);
+            const uint32_t begin = leaf_begin_[leaf], n = leaf_begin_[leaf + 1] - begin;
+            const double *x = leaf_xyz_.data() + begin, *y = x + count_, *z = y + count_;
+            // All the leaf's distances first, a loop the compiler can vectorize (the same sums as
+            // squared_distance's, so the same values).
+            double distance[LEAF_POINTS];
+            for (uint32_t j = 0; j < n; ++j) {
+                const double dx = q[0] - x[j], dy = q[1] - y[j], dz = q[2] - z[j];
+                distance[j] = dx * dx + dy * dy + dz * dz;
+            }
+            // Those not beyond the bound as the leaf begins, listed without a branch (about which way it goes
+            // there is no telling), then offered.
+            uint32_t near[LEAF_POINTS], m = 0;
+            for (uint32_t j = 0; j < n; ++j) {
+                near[m] = j;
+                m += !(distance[j] > found.bound);
+            }
+            for (uint32_t t = 0; t < m; ++t) {
+                const uint32_t p = order_[begin + near[t]];
+                if (p != query) found.offer(distance[near[t]], p);
             }
         } else {
             const uint32_t left = 2 * node, right = left + 1;
@@ -174,6 +234,62 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out) cons
         if (top == 0) break;
         node = stack[--top].node;
     }
+}
+
+uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, NearestHint* hint) const {
+    k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (k == 0) return 0;
+    const double* q = xyz_ + 3 * size_t(query);
+    // First the k + 1 nearest, from the query's own leaf outwards. When the (k + 1)-th is strictly farther than
+    // the k-th, the k nearest are the only k points that near, whatever the order of the search; among equal
+    // distances at the k-th, though, which points the search from the root keeps depends on its order (it
+    // skips a node exactly at the bound), so it runs again.
+    // After a tie at the k-th distance the next queries likely have one too (a grid): they go to the search
+    // from the root at once for a while.
+    if (hint != nullptr && hint->from_root > 0) {
+        --hint->from_root;
+        return nearest_from_root(query, k, out);
+    }
+    if (k < count_ - 1) {
+        Gathered gathered;
+        gathered.wanted = k + 1;
+        // The last query's k + 1 nearest and itself, less this query, are k + 1 points within its reach plus
+        // the way from there: a bound to start from (a little above it, for the rounding). Should fewer than
+        // k + 1 be nearer than that after all, the search runs again without it.
+        if (hint != nullptr && hint->k == k && hint->query < count_) {
+            const double way = sqrt(squared_distance(q, xyz_ + 3 * size_t(hint->query)));
+            const double reach = (hint->reach + way) * (1 + 0x1p-40);
+            gathered.bound = reach * reach;
+        }
+        for (;;) {
+            uint32_t node = (1u << depth_) + leaf_of_[query];
+            search(q, query, node, gathered);
+            for (; node > 1; node >>= 1) {
+                const uint32_t sibling = node ^ 1;
+                if (squared_distance_to_box(q, boxes_[sibling]) < gathered.bound) search(q, query, sibling, gathered);
+            }
+            if (gathered.size > k) break;
+            gathered.size = 0;
+            gathered.bound = INFINITY;
+        }
+        const bool tied = !(gathered.distance[k] < gathered.distance[k + 1]);
+        if (hint != nullptr) {
+            *hint = NearestHint{query, k, sqrt(gathered.distance[k + 1]), tied ? ROOT_SEARCHES_AFTER_TIE : 0};
+        }
+        if (!tied) {
+            gathered.settle_ties();
+            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j + 1];
+            return k;
+        }
+    }
+    return nearest_from_root(query, k, out);
+}
+
+uint32_t NeighbourIndex::nearest_from_root(uint32_t query, uint32_t k, uint32_t* out) const {
+    Candidates found;
+    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (found.k == 0) return 0;
+    search(xyz_ + 3 * size_t(query), query, 1, found);
     for (uint32_t j = 0; j < found.size; ++j) out[j] = found.index[j];
     return found.size;
 }
@@ -193,8 +309,9 @@ dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted
         DBRG_PROPAGATE(progress.report(first, count));
         const size_t last = std::min(size_t(count), first + step);
         for_each_slice(last - first, parts, [&](size_t begin, size_t end) {
+            NearestHint hint;
             for (size_t i = first + begin; i < first + end; ++i) {
-                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i);
+                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i, &hint);
             }
         });
     }

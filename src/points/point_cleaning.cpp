@@ -206,11 +206,12 @@ private:
         const double* xyz = points_.coordinates.data();
         const uint32_t parts = part_count(context_.params.threads, samples, MIN_POINTS_PER_THREAD / NOISE_SAMPLE_STRIDE);
         DBRG_PROPAGATE(progress.for_each_step(samples, parts, [&](size_t begin, size_t end) {
+            NearestHint hint;  // samples a stride apart along the curve are still near each other
             for (size_t s = begin; s < end; ++s) {
                 const uint32_t v = uint32_t(s * stride);
                 if (flags_[v] != KEPT) continue;
                 uint32_t around[WIDE_NEIGHBOURS];
-                const uint32_t found = index.nearest(v, WIDE_NEIGHBOURS, around);
+                const uint32_t found = index.nearest(v, WIDE_NEIGHBOURS, around, &hint);
                 double mean_distance = 0;
                 for (uint32_t j = 0; j < NEIGHBOURS; ++j) mean_distance += distance(v, around[j]);
                 mean_distance /= NEIGHBOURS;
