@@ -443,12 +443,7 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
     }
     std::vector<uint32_t> triangles;
     for (uint64_t id : faces) triangles.push_back(static_cast<uint32_t>(id - base));
-    dbrg_mesh* mesh = nullptr;
-    steps.mesh.status = dbrg_mesh_assemble(&all, triangles.data(), triangles.size() / 3, nullptr, &mesh);
-    const uint32_t* t = dbrg_mesh_triangles(mesh);
-    steps.mesh.triangles.assign(t, t + 3 * size_t(dbrg_mesh_triangle_count(mesh)));
-    steps.mesh.boundary_loops = dbrg_mesh_boundary_loop_count(mesh);
-    dbrg_mesh_destroy(mesh);
+    steps.mesh = test::assemble(xyz, triangles);
     return steps;
 }
 
