@@ -17,6 +17,7 @@
 #include "grow/region_growing.h"
 #include "growth_snapshots.h"
 #include "holes/hole_filling.h"
+#include "holes/point_insertion.h"
 #include "planar/planar_delaunay.h"
 #include "planar/planar_growing.h"
 #include "surface/surface.h"
@@ -133,7 +134,9 @@ dbrg_status fill_holes(const Tetrahedralization& delaunay, Surface& surface, Reg
         DBRG_PROPAGATE(filler.fill_with_ears(stage.part(FILL_PROGRESS_EARS, FILL_PROGRESS_ISLANDS),
                                              stage.part(FILL_PROGRESS_ISLANDS, FILL_PROGRESS_HANDLES)));
     }
-    DBRG_PROPAGATE(filler.remove_small_handles(stage.part(FILL_PROGRESS_HANDLES, FILL_PROGRESS_FLIPS)));
+    DBRG_PROPAGATE(filler.remove_small_handles(stage.part(FILL_PROGRESS_HANDLES, FILL_PROGRESS_POINTS)));
+    PointInsertion insertion(delaunay, surface, context);
+    DBRG_PROPAGATE(insertion.insert_left_out(stage.part(FILL_PROGRESS_POINTS, FILL_PROGRESS_FLIPS)));
     // Growing's flips passed over the edges with a corner on a hole's rim: the holes are closed, and what is
     // around the filled holes has changed.
     DBRG_PROPAGATE(grower.flip_deferred(stage.part(FILL_PROGRESS_FLIPS, 1)));
@@ -205,8 +208,11 @@ dbrg_status grow_from_surface(const dbrg_points* points, const uint32_t* seeds, 
         if (holes) {
             DBRG_PROPAGATE(grower.regrow_holes(stage.part(0, FILL_PROGRESS_EARS)));
             DBRG_PROPAGATE(filler.fill_with_ears(stage.part(FILL_PROGRESS_EARS, FILL_PROGRESS_ISLANDS),
-                                                 stage.part(FILL_PROGRESS_ISLANDS, FILL_PROGRESS_FLIPS)));
+                                                 stage.part(FILL_PROGRESS_ISLANDS, FILL_PROGRESS_POINTS)));
         }
+        PointInsertion insertion(delaunay, surface, context);
+        insertion.keep_fixed(fixed_flags.empty() ? nullptr : fixed_flags.data());
+        DBRG_PROPAGATE(insertion.insert_left_out(stage.part(FILL_PROGRESS_POINTS, FILL_PROGRESS_FLIPS)));
         DBRG_PROPAGATE(grower.flip_deferred(stage.part(FILL_PROGRESS_FLIPS, 1)));
         context.stats.seconds_fill_holes = seconds_now() - start;
     }

@@ -1,6 +1,6 @@
 // Unit tests of hole filling: each of its rules on a small surface made by hand (the ears start at
 // concave corners, a hole that cannot be filled is enlarged, short handles are cut, the boundary's edges
-// vote on whether a loop is a hole), and its undo log (FaceJournal), which takes any interleaving of
+// vote on whether a loop is a hole, a point left under the surface is put back in), and its undo log (FaceJournal), which takes any interleaving of
 // additions and removals back exactly.
 #include <doctest/doctest.h>
 
@@ -13,11 +13,14 @@
 
 #include "core/params.h"
 #include "core/pi.h"
+#include "core/splitmix64.h"
 #include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/boundary_causes.h"
+#include "grow/region_growing.h"
 #include "holes/face_journal.h"
 #include "holes/hole_filling.h"
+#include "holes/point_insertion.h"
 #include "support/counting_allocator.h"
 
 using namespace dbrg;
@@ -545,4 +548,84 @@ TEST_CASE("a loop every edge of which saw a candidate refused as too large is a 
         CHECK(torus.context.stats.holes_found == 0);
         CHECK(torus.boundary_halfedges() == 22);
     }
+}
+
+namespace {
+
+// S as growing leaves it on 3000 uniformly random points on the unit sphere: random points cluster, and a
+// point closer to another than the spacing is often left under a face of a flat Delaunay tetrahedron.
+struct GrownRandomSphere : HandMade {
+    GrownRandomSphere() : HandMade(random_sphere(), {}) {
+        RegionGrower grower(delaunay, surface, context);
+        REQUIRE(grower.grow() == DBRG_OK);
+        require_valid(surface);
+    }
+    static std::vector<double> random_sphere() {
+        SplitMix64 random(11);
+        std::vector<double> xyz;
+        for (int i = 0; i < 3000; ++i) {
+            const double z = 2 * random.uniform() - 1, a = 2 * PI * random.uniform(), r = sqrt(1 - z * z);
+            xyz.insert(xyz.end(), {r * cos(a), r * sin(a), z});
+        }
+        return xyz;
+    }
+    // V - E + F of S; with the boundary, the components and the faces' flags, what must not change but for
+    // the fans' two extra faces each.
+    int64_t euler_characteristic() const {
+        const int64_t f = surface.live_face_count(), edges = (3 * f + boundary_halfedges()) / 2;
+        return int64_t(surface.used_vertex_count()) - edges + f;
+    }
+    uint32_t components() {
+        Array<uint32_t> labels(context.memory);
+        return surface.label_components(labels);
+    }
+    dbrg_status insert_points(const uint8_t* fixed = nullptr) {
+        PointInsertion insertion(delaunay, surface, context);
+        insertion.keep_fixed(fixed);
+        const dbrg_status status = insertion.insert_left_out(ProgressSpan(context, DBRG_STAGE_FILL_HOLES));
+        require_valid(surface);
+        return status;
+    }
+};
+
+} // namespace
+
+TEST_CASE("points growing left under S are put in with fans of Delaunay triangles; the topology stays") {
+    GrownRandomSphere sphere;
+    const uint32_t used_before = sphere.surface.used_vertex_count(), faces_before = sphere.surface.live_face_count();
+    const uint32_t boundary_before = sphere.boundary_halfedges();
+    const int64_t euler_before = sphere.euler_characteristic();
+    const uint32_t components_before = sphere.components();
+    REQUIRE(used_before < sphere.points.size());
+    MESSAGE("grown: " << sphere.points.size() - used_before << " of " << sphere.points.size() << " points left out");
+
+    REQUIRE(sphere.insert_points() == DBRG_OK);
+    const uint32_t inserted = sphere.context.stats.points_inserted;
+    CHECK(inserted > 0);
+    CHECK(sphere.surface.used_vertex_count() == used_before + inserted);
+    // Each fan has two faces more than the disk it replaces (all the disk's vertices are on its rim).
+    CHECK(sphere.surface.live_face_count() == faces_before + 2 * inserted);
+    CHECK(sphere.boundary_halfedges() == boundary_before);
+    CHECK(sphere.euler_characteristic() == euler_before);
+    CHECK(sphere.components() == components_before);
+    // Every face is still one of its tetrahedron's: a fan face spans the tetrahedron of its patch face and q.
+    for (uint32_t f = 0; f < sphere.surface.face_count(); ++f) {
+        if (sphere.surface.face_removed(f)) continue;
+        const uint32_t t = sphere.surface.face_tet(f);
+        REQUIRE(t != NO_TET);
+        uint32_t shared = 0;
+        for (uint32_t i = 0; i < 3; ++i) shared += sphere.delaunay.tet_local_index(t, sphere.surface.corner(f, i)) < 4 ? 1 : 0;
+        CHECK(shared == 3);
+    }
+}
+
+TEST_CASE("no patch with a fixed vertex is replaced") {
+    GrownRandomSphere sphere;
+    const std::vector<FaceKey> before = snapshot(sphere.surface);
+    // Every vertex S uses is fixed: nothing can change.
+    std::vector<uint8_t> fixed(sphere.points.size(), 0);
+    for (uint32_t v = 0; v < fixed.size(); ++v) fixed[v] = sphere.surface.is_used(v) ? 1 : 0;
+    REQUIRE(sphere.insert_points(fixed.data()) == DBRG_OK);
+    CHECK(sphere.context.stats.points_inserted == 0);
+    CHECK(snapshot(sphere.surface) == before);
 }

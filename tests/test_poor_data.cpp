@@ -145,6 +145,32 @@ TEST_CASE("two sheets closer than the spacing: always a valid manifold, often cl
     CHECK(closed_genus_0 >= 1);  // a regression sentinel at the measured rate, not a promise
 }
 
+TEST_CASE("uniformly random points on a sphere: the points left under the surface are put back in") {
+    // Random points cluster: closer pairs than the spacing make flat Delaunay tetrahedra, growing takes one
+    // face of each and the point on the other side stays under it. Measured before point insertion: 1.6 % of
+    // the points left out; with it, about 0.15 %.
+    for (uint32_t seed = 1; seed <= 3; ++seed) {
+        CAPTURE(seed);
+        SplitMix64 random(seed);
+        std::vector<double> xyz;
+        const size_t points = 20000;
+        for (size_t i = 0; i < points; ++i) {
+            const double z = 2 * random.uniform() - 1, a = 2 * PI * random.uniform(), r = std::sqrt(1 - z * z);
+            xyz.insert(xyz.end(), {r * std::cos(a), r * std::sin(a), z});
+        }
+        const test::Reconstruction result = test::reconstruct(xyz);
+        REQUIRE(result.status == DBRG_OK);
+        const measure::MeshReport report = test::report_of(xyz, result.triangles);
+        test::require_valid_manifold(report);
+        CHECK(test::signed_volume(xyz, result.triangles) > 0);
+        CHECK(result.stats.points_inserted > points / 200);
+        CHECK((result.stats.unique_points - result.stats.vertices_used) < points / 200);
+        MESSAGE("random sphere " << seed << ": " << result.stats.points_inserted << " inserted, "
+                                 << (result.stats.unique_points - result.stats.vertices_used) << " left out, " << report.edges_boundary
+                                 << " boundary edges");
+    }
+}
+
 TEST_CASE("a coarsely sampled torus keeps its handle: its short cycles are long in edge lengths") {
     // 100 to 250 points leave the tube 4 to 6 edges around, as short in edges as a bridge's cycles.
     for (size_t points : {100, 150, 250}) {

@@ -393,6 +393,9 @@ typedef struct dbrg_stats {
     uint32_t tiles;                  /* tiles reconstructed (1 when the call ran as one piece) */
     uint32_t seam_faces_dropped;     /* stitched faces left out because they would break the manifold */
     size_t tile_peak_bytes;          /* the most one tile, or one seam stitch, held through the allocator */
+    /* From version 0.5.0 on. */
+    uint32_t points_inserted;        /* points growing and hole filling passed over that a fan of Delaunay
+                                        triangles put back into the surface (a close pair's second point) */
 } dbrg_stats;
 
 /* Returns the indices of the input points left out as outliers, ascending, and writes their number to

@@ -283,6 +283,7 @@ std::string stats_json(const dbrg_stats& s, const dbrg_mesh* mesh, double second
         .add_unsigned("hole_triangles_removed", s.hole_triangles_removed)
         .add_unsigned("faces_filled", faces_filled(mesh))
         .add_unsigned("handles_removed", s.handles_removed)
+        .add_unsigned("points_inserted", s.points_inserted)
         .add_unsigned("outliers", s.outliers)
         .add_unsigned("near_duplicates_merged", s.near_duplicates_merged)
         .add_unsigned("points_smoothed", s.points_smoothed)

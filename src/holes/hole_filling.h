@@ -26,10 +26,12 @@ struct SurfaceTopology;
 // Where the passes of hole filling start in DBRG_STAGE_FILL_HOLES's progress, each ending where the next
 // starts (about their shares of the time on large inputs): Delaunay triangles over the holes
 // (RegionGrower::regrow_holes) from 0, ears, removing the islands that enlarging cut off, small handles,
-// and the flips growing deferred (RegionGrower::flip_deferred) up to 1.
+// putting back the points passed over (PointInsertion), and the flips growing deferred
+// (RegionGrower::flip_deferred) up to 1.
 constexpr double FILL_PROGRESS_EARS = 0.05;
 constexpr double FILL_PROGRESS_ISLANDS = 0.25;
 constexpr double FILL_PROGRESS_HANDLES = 0.55;
+constexpr double FILL_PROGRESS_POINTS = 0.93;
 constexpr double FILL_PROGRESS_FLIPS = 0.97;
 // Removing small handles goes in rounds, the first taking the first half of the pass's progress and each
 // later one half of what is left. Where the parts of a round start in its share, each ending where the

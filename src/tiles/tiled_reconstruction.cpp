@@ -84,6 +84,7 @@ void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
     total.hole_triangles_added += piece.hole_triangles_added;
     total.hole_triangles_removed += piece.hole_triangles_removed;
     total.handles_removed += piece.handles_removed;
+    total.points_inserted += piece.points_inserted;
     total.pinch_faces_removed += piece.pinch_faces_removed;
     total.predicate_calls += piece.predicate_calls;
     total.predicate_filter_failures += piece.predicate_filter_failures;

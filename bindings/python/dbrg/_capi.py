@@ -165,6 +165,7 @@ class dbrg_stats(ctypes.Structure):
         ("tiles", c_uint32),
         ("seam_faces_dropped", c_uint32),
         ("tile_peak_bytes", c_size_t),
+        ("points_inserted", c_uint32),
     ]
 
 

@@ -154,6 +154,7 @@ pub struct dbrg_stats {
     pub tiles: u32,
     pub seam_faces_dropped: u32,
     pub tile_peak_bytes: usize,
+    pub points_inserted: u32,
 }
 
 /// How a cloud is cut into slabs (`dbrg_tiling_plan`). EXPERIMENTAL.

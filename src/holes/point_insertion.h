@@ -1,0 +1,70 @@
+// Point insertion: puts back the sample points that growing and hole filling passed over. Where two
+// points lie closer together than the spacing (a uniformly random sample has hundreds of such pairs),
+// the four corners of a flat Delaunay tetrahedron are on the surface. Growing takes the tetrahedron's
+// smoothest face, and the point on the other side is left under it. Such a point sees a patch of S
+// through Delaunay tetrahedra: the faces f of S for which f and the point span one. When that patch is a
+// disk, a fan from the point over the disk's rim is made of Delaunay triangles too (the tetrahedra's
+// other faces), and replaces the patch without changing the topology of S.
+#pragma once
+
+#include <stdint.h>
+
+#include "core/array.h"
+#include "core/context.h"
+#include "core/progress_span.h"
+#include "core/vec3.h"
+#include "delaunay/tetrahedralization.h"
+#include "surface/surface.h"
+
+namespace dbrg {
+
+class PointInsertion {
+public:
+    PointInsertion(const Tetrahedralization& delaunay, Surface& surface, Context& context);
+
+    // No patch touching a vertex marked in `fixed` (NULL: none) is replaced: a fixed vertex's fan is
+    // complete outside the points at hand (RegionGrower::grow_from).
+    void keep_fixed(const uint8_t* fixed) { fixed_ = fixed; }
+
+    // Inserts every point S does not use whose patch is a disk and whose fan passes the examinations
+    // growing applies (no fold past the sliver angle, with the faces around and within the fan), in
+    // rounds while a round inserts any: a point inserted can uncover its close neighbour's patch.
+    // Adds context.stats.points_inserted. Reports to `progress`.
+    dbrg_status insert_left_out(const ProgressSpan& progress);
+
+private:
+    // A face of S that spans a Delaunay tetrahedron with the point at hand.
+    struct PatchFace {
+        uint32_t face, tet;
+    };
+
+    // A round over the points S does not use; `inserted` counts those it put in.
+    dbrg_status insert_round(const ProgressSpan& progress, uint32_t& inserted);
+    // Fills patch_ for point q; false on allocation failure.
+    bool find_patch(uint32_t q);
+    // The face of S with corners a, b and c in either orientation, or NO_FACE.
+    uint32_t find_face(uint32_t a, uint32_t b, uint32_t c) const;
+    // Fills rim_ with the patch's boundary half-edges in order along its one rim, when the patch is a disk
+    // with every vertex on the rim (a vertex inside would be left out by the fan); false otherwise.
+    bool find_rim();
+    // Whether the fan from q over the rim folds nowhere past the sliver angle.
+    bool fan_is_valid(uint32_t q) const;
+    // Replaces the patch by the fan; `inserted` tells whether it did (the topological examination of every
+    // fan face is run once more as it is added, and a fan it refuses is taken back).
+    dbrg_status replace_by_fan(uint32_t q, bool& inserted);
+    // The entry of patch_ for face f, or NO_FACE.
+    uint32_t patch_index(uint32_t f) const;
+    bool patch_touches_fixed() const;
+    Vec3 fan_normal(uint32_t q, uint32_t rim_halfedge) const;
+
+    const Tetrahedralization& delaunay_;
+    Surface& surface_;
+    Context& context_;
+    double cos_sliver_;
+    const uint8_t* fixed_ = nullptr;
+    Array<uint32_t> tets_;        // around the point at hand
+    Array<PatchFace> patch_;      // its patch
+    Array<uint32_t> rim_;         // the patch's rim, in order
+};
+
+} // namespace dbrg
