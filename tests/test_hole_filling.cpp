@@ -13,7 +13,6 @@
 
 #include "core/params.h"
 #include "core/pi.h"
-#include "core/splitmix64.h"
 #include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/boundary_causes.h"
@@ -21,6 +20,7 @@
 #include "holes/face_journal.h"
 #include "holes/hole_filling.h"
 #include "holes/point_insertion.h"
+#include "delaunay_test_support.h"
 #include "support/counting_allocator.h"
 
 using namespace dbrg;
@@ -555,19 +555,10 @@ namespace {
 // S as growing leaves it on 3000 uniformly random points on the unit sphere: random points cluster, and a
 // point closer to another than the spacing is often left under a face of a flat Delaunay tetrahedron.
 struct GrownRandomSphere : HandMade {
-    GrownRandomSphere() : HandMade(random_sphere(), {}) {
+    GrownRandomSphere() : HandMade(dbrg_test::random_sphere(3000, 11), {}) {
         RegionGrower grower(delaunay, surface, context);
         REQUIRE(grower.grow() == DBRG_OK);
         require_valid(surface);
-    }
-    static std::vector<double> random_sphere() {
-        SplitMix64 random(11);
-        std::vector<double> xyz;
-        for (int i = 0; i < 3000; ++i) {
-            const double z = 2 * random.uniform() - 1, a = 2 * PI * random.uniform(), r = sqrt(1 - z * z);
-            xyz.insert(xyz.end(), {r * cos(a), r * sin(a), z});
-        }
-        return xyz;
     }
     // V - E + F of S; with the boundary, the components and the faces' flags, what must not change but for
     // the fans' two extra faces each.

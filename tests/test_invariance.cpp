@@ -65,6 +65,8 @@ const std::vector<PointSetCase>& point_sets() {
         out.push_back({"lattice 7x7x7", dbrg_test::lattice(7, 0.0, 0)});
         out.push_back({"jittered lattice 7x7x7", snapped(dbrg_test::lattice(7, 0.3, 3))});
         out.push_back({"lattice cube surface 10", dbrg_test::cube_surface_lattice(10)});
+        // Clumped points: point insertion puts some of them in after hole filling.
+        out.push_back({"random sphere", snapped(dbrg_test::random_sphere(1500, 5))});
         out.push_back({"integer sphere r^2 = 50", integer_sphere(50)});
         out.push_back({"concentric integer spheres r^2 = 27, 75", concatenated(integer_sphere(27), integer_sphere(75))});
         // A sphere with its first 100 points repeated at the end and 50 more in the middle.

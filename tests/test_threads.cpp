@@ -161,6 +161,11 @@ TEST_CASE("an input large enough to be split gives the same results on one threa
     check_as_on_one_thread(input_to_split());
 }
 
+TEST_CASE("uniformly random points, some put in by point insertion, give the same results on several threads") {
+    // The tetrahedra's slots differ with the threads that built them; which points are put in must not.
+    check_as_on_one_thread(dbrg_test::random_sphere(40000, 9));
+}
+
 #if defined(__GLIBC__)
 namespace {
 
