@@ -37,6 +37,7 @@ std::vector<Input> inputs() {
     out.push_back({"torus", samples::sample(samples::Shape::torus, 250)});
     out.push_back({"hemisphere", samples::sample(samples::Shape::hemisphere, 150)});
     out.push_back({"cube", samples::sample(samples::Shape::cube, 200)});
+    out.push_back({"random sphere (points put in by point insertion)", dbrg_test::random_sphere(300, 1)});
     out.push_back({"lattice 5x5x5", dbrg_test::lattice(5, 0.0, 0)});
     out.push_back({"lattice cube surface 6", dbrg_test::cube_surface_lattice(6)});
     std::vector<double> duplicated = samples::sample(samples::Shape::sphere, 150);
@@ -379,7 +380,7 @@ TEST_CASE("every stage reports from 0 to 1, and each pass of growing and hole fi
     const double REGROWING = REGROW_PROGRESS_GROWING * FILL_PROGRESS_EARS;
     // The first round of removing small handles: the first half of that pass.
     const auto handles_round = [](double from, double to) {
-        const double begin = FILL_PROGRESS_HANDLES, length = (FILL_PROGRESS_FLIPS - FILL_PROGRESS_HANDLES) / 2;
+        const double begin = FILL_PROGRESS_HANDLES, length = (FILL_PROGRESS_POINTS - FILL_PROGRESS_HANDLES) / 2;
         return Window{DBRG_STAGE_FILL_HOLES, begin + from * length, begin + to * length};
     };
     const struct {
@@ -398,6 +399,7 @@ TEST_CASE("every stage reports from 0 to 1, and each pass of growing and hole fi
         {"handles: spanning tree", torus, handles_round(HANDLES_PROGRESS_TREE, HANDLES_PROGRESS_COTREE)},
         {"handles: cotree", torus, handles_round(HANDLES_PROGRESS_COTREE, HANDLES_PROGRESS_CYCLES)},
         {"handles: short cycles", torus, handles_round(HANDLES_PROGRESS_CYCLES, HANDLES_PROGRESS_CUTS)},
+        {"point insertion", noisy, {FILL, FILL_PROGRESS_POINTS, FILL_PROGRESS_FLIPS}},
         {"deferred flips", noisy, {FILL, FILL_PROGRESS_FLIPS, 1.0}},
     };
     for (const auto& pass : passes) {

@@ -283,6 +283,16 @@ static void test_reconstruction(void) {
     CHECK(stats.tetrahedra > 0);
     CHECK(stats.seconds_total >= stats.seconds_delaunay);
     CHECK(stats.peak_bytes > 0);
+    {
+        /* A caller compiled against 0.4.0, whose struct ends before points_inserted, gets its fields only. */
+        dbrg_stats older;
+        memset(&older, 0xab, sizeof older);
+        older.struct_size = offsetof(dbrg_stats, points_inserted);
+        CHECK(dbrg_mesh_stats(mesh, &older) == DBRG_OK);
+        CHECK(older.struct_size == offsetof(dbrg_stats, points_inserted));
+        CHECK(older.triangles == stats.triangles);
+        CHECK(older.points_inserted == 0xabababab);
+    }
     dbrg_mesh_destroy(mesh);
     dbrg_mesh_destroy(NULL);
 

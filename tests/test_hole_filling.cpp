@@ -1,7 +1,7 @@
 // Unit tests of hole filling: each of its rules on a small surface made by hand (the ears start at
 // concave corners, a hole that cannot be filled is enlarged, short handles are cut, the boundary's edges
-// vote on whether a loop is a hole, a point left under the surface is put back in), and its undo log (FaceJournal), which takes any interleaving of
-// additions and removals back exactly.
+// vote on whether a loop is a hole), point insertion on a grown random sphere, and the undo log
+// (FaceJournal), which takes any interleaving of additions and removals back exactly.
 #include <doctest/doctest.h>
 
 #include <math.h>
@@ -610,13 +610,24 @@ TEST_CASE("points growing left under S are put in with fans of Delaunay triangle
     }
 }
 
-TEST_CASE("no patch with a fixed vertex is replaced") {
+TEST_CASE("no face with a fixed corner is replaced; the points elsewhere are put in") {
     GrownRandomSphere sphere;
-    const std::vector<FaceKey> before = snapshot(sphere.surface);
-    // Every vertex S uses is fixed: nothing can change.
+    // The vertices S uses on the upper half are fixed.
     std::vector<uint8_t> fixed(sphere.points.size(), 0);
-    for (uint32_t v = 0; v < fixed.size(); ++v) fixed[v] = sphere.surface.is_used(v) ? 1 : 0;
+    double middle = 0;
+    for (uint32_t v = 0; v < fixed.size(); ++v) middle += sphere.delaunay.point(v)[2] / fixed.size();
+    for (uint32_t v = 0; v < fixed.size(); ++v) {
+        fixed[v] = sphere.surface.is_used(v) && sphere.delaunay.point(v)[2] > middle ? 1 : 0;
+    }
+    const auto faces_with_a_fixed_corner = [&] {
+        std::vector<FaceKey> kept;
+        for (const FaceKey& key : snapshot(sphere.surface)) {
+            if (fixed[key[0]] || fixed[key[1]] || fixed[key[2]]) kept.push_back(key);
+        }
+        return kept;
+    };
+    const std::vector<FaceKey> before = faces_with_a_fixed_corner();
     REQUIRE(sphere.insert_points(fixed.data()) == DBRG_OK);
-    CHECK(sphere.context.stats.points_inserted == 0);
-    CHECK(snapshot(sphere.surface) == before);
+    CHECK(sphere.context.stats.points_inserted > 0);
+    CHECK(faces_with_a_fixed_corner() == before);
 }

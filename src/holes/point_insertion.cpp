@@ -63,18 +63,13 @@ dbrg_status PointInsertion::insert_round(const ProgressSpan& progress, uint32_t&
 dbrg_status PointInsertion::insert_over_a_disk(uint32_t q, bool& inserted) {
     inserted = false;
     // The faces q sees can fall apart into pieces (q spans tetrahedra with two faces of S that share no
-    // edge); each piece's fan is made of Delaunay triangles all the same. Larger pieces first.
-    for (uint32_t size = uint32_t(patch_.size()); size > 0 && !inserted; --size) {
-        for (uint32_t first = 0; first < patch_.size() && !inserted; ++first) {
-            if (!take_piece(first, size)) {
-                if (context_.memory.failed()) return context_.fail_out_of_memory();
-                continue;
-            }
-            if (disk_touches_fixed() || !find_rim()) {
-                if (context_.memory.failed()) return context_.fail_out_of_memory();
-                continue;
-            }
-            if (fan_is_valid(q)) DBRG_PROPAGATE(replace_by_fan(q, inserted));
+    // edge); each piece's fan is made of Delaunay triangles all the same. Larger pieces first. One fan is
+    // tried at most: a fan refused and taken back restores the faces under new ids, so patch_ is stale.
+    for (uint32_t size = uint32_t(patch_.size()); size > 0; --size) {
+        for (uint32_t first = 0; first < patch_.size(); ++first) {
+            const bool disk = take_piece(first, size) && !disk_touches_fixed() && find_rim();
+            if (context_.memory.failed()) return context_.fail_out_of_memory();
+            if (disk && fan_is_valid(q)) return replace_by_fan(q, inserted);
         }
     }
     return DBRG_OK;
@@ -156,13 +151,14 @@ bool PointInsertion::find_rim() {
     for (size_t i = 0; i + 1 < edges; ++i) {
         // Order the rim: the edge leaving where edge i ends goes next.
         const uint32_t end = surface_.target(rim_[i]);
+        if (end == surface_.origin(rim_[0])) return false;  // back at the start early: a pinched or second rim
         size_t next = edges;
         for (size_t j = i + 1; j < edges; ++j) {
             if (surface_.origin(rim_[j]) != end) continue;
             if (next != edges) return false;  // the rim passes twice through `end`
             next = j;
         }
-        if (next == edges) return false;  // the loop closed early: more than one rim
+        if (next == edges) return false;  // no edge goes on from `end`: the rim does not close
         const uint32_t swapped = rim_[i + 1];
         rim_[i + 1] = rim_[next];
         rim_[next] = swapped;
@@ -223,8 +219,8 @@ dbrg_status PointInsertion::replace_by_fan(uint32_t q, bool& inserted) {
         const uint32_t added = surface_.add_face(face.a, face.b, q, face.tet, check);
         if (added == NO_FACE || !journal.record_added(surface_, added)) return context_.fail_out_of_memory();
         surface_.set_face_flags(added, face.flags);
-        inserted = journal.added_count() == fan.size();
     }
+    inserted = journal.added_count() == fan.size();
     if (inserted) return DBRG_OK;
     const bool undone = journal.undo(surface_, 0, [&](const FaceJournal::Entry& entry) {
         const uint32_t f = surface_.add_face(entry.corners[0], entry.corners[1], entry.corners[2], entry.tet);

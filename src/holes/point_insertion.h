@@ -44,7 +44,7 @@ private:
     // Fills patch_ for point q, ordered by face id (not by tetrahedron slot, which depends on the threads
     // that built the tetrahedralization); false on allocation failure.
     bool find_patch(uint32_t q);
-    // Tries the pieces of the patch, larger first, until a fan over one replaces it.
+    // Tries the pieces of the patch, larger first, until one is a disk with a valid fan, and replaces it.
     dbrg_status insert_over_a_disk(uint32_t q, bool& inserted);
     // Fills disk_ with the piece of the patch that patch_[first] is in, when no earlier face of patch_ is
     // in it and it has `size` faces; false otherwise or on allocation failure.
@@ -64,7 +64,9 @@ private:
     uint32_t patch_index(uint32_t f) const;
     uint32_t disk_index(uint32_t f) const;
     static uint32_t index_in(const Array<PatchFace>& faces, uint32_t f);
+    // Whether a corner of disk_ is fixed (keep_fixed).
     bool disk_touches_fixed() const;
+    // The unit normal of the fan face over a rim half-edge (zero when the face is degenerate).
     Vec3 fan_normal(uint32_t q, uint32_t rim_halfedge) const;
 
     const Tetrahedralization& delaunay_;
@@ -75,7 +77,7 @@ private:
     Array<uint32_t> tets_;        // around the point at hand
     Array<PatchFace> patch_;      // its patch
     Array<PatchFace> disk_;       // the piece of the patch at hand
-    Array<uint32_t> rim_;         // the patch's rim, in order
+    Array<uint32_t> rim_;         // disk_'s rim, in order
 };
 
 } // namespace dbrg
