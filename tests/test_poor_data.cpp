@@ -152,7 +152,7 @@ TEST_CASE("uniformly random points on a sphere: the points left under the surfac
     // of the points left out; with it, 0.1-0.2 %.
     for (uint32_t seed = 1; seed <= 3; ++seed) {
         CAPTURE(seed);
-        const size_t points = 20000;
+        const size_t points = 10000;
         const std::vector<double> xyz = dbrg_test::random_sphere(points, seed);
         const test::Reconstruction result = test::reconstruct(xyz);
         REQUIRE(result.status == DBRG_OK);
