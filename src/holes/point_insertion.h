@@ -27,9 +27,9 @@ public:
     // complete outside the points at hand (RegionGrower::grow_from).
     void keep_fixed(const uint8_t* fixed) { fixed_ = fixed; }
 
-    // Inserts every point S does not use whose patch, or a piece of it, is a disk and whose fan passes the
-    // examinations growing applies (no fold past the sliver angle, with the faces around and within the
-    // fan), in rounds while a round inserts any: a point inserted can uncover its close neighbour's patch.
+    // Inserts every point S does not use whose patch, or a piece of it, is a disk and whose fan passes
+    // fan_is_valid and growing's topological examination, in rounds while a round inserts any: a point
+    // inserted can uncover its close neighbour's patch.
     // Adds context.stats.points_inserted. Reports to `progress`.
     dbrg_status insert_left_out(const ProgressSpan& progress);
 
