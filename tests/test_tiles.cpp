@@ -36,6 +36,18 @@ double face_agreement(const std::vector<uint32_t>& mesh, const std::vector<uint3
     return reference.empty() ? 1.0 : double(found) / double(reference.size() / 3);
 }
 
+// The faces as oriented triangles, each rotated to start at its smallest corner, sorted.
+std::vector<std::array<uint32_t, 3>> oriented_faces(const std::vector<uint32_t>& triangles) {
+    std::vector<std::array<uint32_t, 3>> faces;
+    for (size_t f = 0; f < triangles.size(); f += 3) {
+        const uint32_t* t = triangles.data() + f;
+        const int first = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+        faces.push_back({t[first], t[(first + 1) % 3], t[(first + 2) % 3]});
+    }
+    std::sort(faces.begin(), faces.end());
+    return faces;
+}
+
 } // namespace
 
 TEST_CASE("stitched tiles of a torus, a double torus and a saddle match the single call") {
@@ -276,6 +288,31 @@ TEST_CASE("the assembly cuts a thin handle across the pieces as a single call wo
     REQUIRE(kept.status == DBRG_OK);
     CHECK(test::report_of(xyz, kept.triangles).genus == 1);
     CHECK(kept.stats.handles_removed == 0);
+}
+
+TEST_CASE("the assembly orients faces given in any order and any direction") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::double_torus, 4000);
+    const test::Reconstruction single = test::reconstruct(xyz);
+    REQUIRE(single.status == DBRG_OK);
+    const std::vector<uint32_t>& faces = single.triangles;
+    // Two scrambles: faces in another order, and a pseudo-random third (then a half) of them turned over.
+    for (const uint32_t turn_every : {3u, 2u}) {
+        std::vector<uint32_t> scrambled;
+        const size_t count = faces.size() / 3;
+        for (size_t k = 0; k < count; ++k) {
+            const size_t f = (k * 7919) % count;  // 7919 is prime, and no divisor of the face count here
+            const bool turn = (f * 2654435761u >> 7) % turn_every == 0;
+            scrambled.insert(scrambled.end(), {faces[3 * f], faces[3 * f + (turn ? 2 : 1)], faces[3 * f + (turn ? 1 : 2)]});
+        }
+        REQUIRE(count % 7919 != 0);
+        REQUIRE(oriented_faces(scrambled) != oriented_faces(faces));
+        const test::Reconstruction assembled = test::assemble(xyz, scrambled);
+        REQUIRE(assembled.status == DBRG_OK);
+        test::require_valid_manifold(test::report_of(xyz, assembled.triangles));
+        // The same faces, turned outward as the single call turns them.
+        CHECK(oriented_faces(assembled.triangles) == oriented_faces(faces));
+        CHECK(assembled.stats.seam_faces_dropped == 0);
+    }
 }
 
 TEST_CASE("a small cloud runs as one piece: slabs thinner than their strips are merged") {
