@@ -4,6 +4,7 @@
 #include <new>
 #include <string>
 
+#include "cli/allocator_settings.h"
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "dbrg/dbrg.h"
@@ -70,6 +71,7 @@ int run(int argc, char** argv) {
 // The library reports through statuses, but the program's own containers can still throw (a huge demo,
 // a huge file): every way out of the program is a message and a non-zero exit, never an abort.
 int main(int argc, char** argv) {
+    dbrg::cli::keep_freed_blocks();
     try {
         return run(argc, argv);
     } catch (const std::bad_alloc&) {

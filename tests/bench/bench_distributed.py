@@ -60,9 +60,8 @@ def run_one(configuration, path, tiles):
         lib.dbrg_mesh_destroy(handle)
     else:
         import dbrg.distributed
-        from distributed import Client, LocalCluster
-        cluster = LocalCluster(n_workers=int(configuration[-1]), threads_per_worker=1, processes=True,
-                               memory_limit="1.5GiB", dashboard_address=":0")
+        from distributed import Client
+        cluster = dbrg.distributed.local_cluster(int(configuration[-1]), memory_limit="1.5GiB")
         client = Client(cluster)
         client.wait_for_workers(int(configuration[-1]))
         before = sum(client.run(worker_seconds).values())

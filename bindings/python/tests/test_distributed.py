@@ -17,7 +17,7 @@ from dbrg.__main__ import program_path
 
 try:
     import distributed
-    from distributed import Client, LocalCluster, WorkerPlugin
+    from distributed import Client, WorkerPlugin
     import dbrg.distributed as dbrg_distributed
 except ImportError as error:  # the tests below skip, saying why
     distributed = None
@@ -48,9 +48,13 @@ def c_loop(points, tiles):
 
 
 def local_cluster(workers):
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, memory_limit="1GiB",
-                           dashboard_address=":0")
+    cluster = dbrg_distributed.local_cluster(workers, memory_limit="1GiB")
     return cluster, Client(cluster)
+
+
+def malloc_environment():
+    """A worker's allocator variables (run on the workers)."""
+    return tuple(os.environ.get(name) for name in sorted(dbrg_distributed.WORKER_MALLOC_ENVIRONMENT))
 
 
 class HoldEarlyTasks(WorkerPlugin):
@@ -153,6 +157,30 @@ class Distributed(unittest.TestCase):
         with self.assertRaises(TypeError):
             dbrg_distributed.reconstruct(self.points, client=self.client, threads=2)
 
+    @staticmethod
+    def expected_environment():
+        settings = dbrg_distributed.WORKER_MALLOC_ENVIRONMENT
+        return tuple(settings[name] for name in sorted(settings))
+
+    def test_workers_start_with_the_allocator_settings(self):
+        # Dask's own setting (which an earlier cluster leaves in this process's environment) gives way, and
+        # this process's environment is left as it was.
+        saved = os.environ.get("MALLOC_TRIM_THRESHOLD_")
+        os.environ["MALLOC_TRIM_THRESHOLD_"] = "65536"
+        try:
+            cluster, client = local_cluster(1)
+            try:
+                self.assertEqual(list(client.run(malloc_environment).values()), [self.expected_environment()])
+            finally:
+                client.close()
+                cluster.close()
+            self.assertEqual(os.environ.get("MALLOC_TRIM_THRESHOLD_"), "65536")
+        finally:
+            if saved is None:
+                os.environ.pop("MALLOC_TRIM_THRESHOLD_")
+            else:
+                os.environ["MALLOC_TRIM_THRESHOLD_"] = saved
+
     def test_one_worker_gives_what_two_give(self):
         cluster, client = local_cluster(1)
         try:
@@ -190,6 +218,9 @@ class Distributed(unittest.TestCase):
             try:
                 client.register_worker_plugin(KillOnFirstTile(marker))
                 mesh = self.run_on(client)
+                # The worker started in place of the killed one has the allocator settings too.
+                client.wait_for_workers(2)
+                self.assertEqual(list(client.run(malloc_environment).values()), [self.expected_environment()] * 2)
             finally:
                 client.close()
                 cluster.close()
