@@ -23,7 +23,8 @@ struct Triangle {
 // A face's use of an edge, filed under the edge's lower end: the upper end in the high half, then the face
 // and, in the lowest bit, whether the face runs from the lower end to the upper one. Eight bytes, so that
 // sorting a mesh's uses moves half what a record of four fields did, and ordered by one comparison. Face
-// numbers fit in 31 bits: a face list indexed in 32 bits has fewer than 2^32 / 3 faces.
+// numbers fit in 31 bits: orient_triangles takes fewer than 2^32 / 3 faces, as the uses' 32-bit offsets
+// need anyway.
 using EdgeUse = uint64_t;
 
 EdgeUse edge_use(uint32_t high, uint32_t face, bool forward) {
@@ -110,6 +111,10 @@ bool faces_up(const Triangle& t, bool flip, const double* xyz) {
 } // namespace
 
 dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, bool turn_up, Context& context) {
+    if (triangles.size() / 3 > UINT32_MAX / 3) {
+        return context.fail(DBRG_ERR_TOO_MANY_POINTS, "%zu faces to orient: at most %u fit", triangles.size() / 3,
+                            UINT32_MAX / 3);
+    }
     const size_t vertices = vertex_bound(triangles);
     Array<Triangle> faces(context.memory);
     if (!canonical_order(triangles, vertices, context.memory, faces)) return context.fail_out_of_memory();

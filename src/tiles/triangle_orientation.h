@@ -18,8 +18,9 @@ namespace dbrg {
 // its component shares an edge with an earlier one, so a surface built in that order has few pinched
 // vertices on the way — which depends on the set of triangles only. `xyz` holds the points' coordinates.
 // With `turn_up` false the components are not turned: each keeps the orientation its first face (in the
-// sorted order) was given, so faces already oriented alike stay as they are. Returns DBRG_OK or
-// DBRG_ERR_OUT_OF_MEMORY.
+// sorted order) was given, so faces already oriented alike stay as they are. Returns DBRG_OK,
+// DBRG_ERR_OUT_OF_MEMORY, or DBRG_ERR_TOO_MANY_POINTS for 2^32 / 3 faces or more (a mesh of about 700
+// million points: the 32-bit API checks its face counts before).
 dbrg_status orient_triangles(Array<uint32_t>& triangles, const double* xyz, bool turn_up, Context& context);
 
 } // namespace dbrg

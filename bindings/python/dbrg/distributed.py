@@ -19,6 +19,7 @@ this package importable on the workers.
 
 import ctypes
 import os
+import threading
 import warnings
 
 import numpy as np
@@ -36,10 +37,12 @@ _OPTIONS = ("sliver_angle", "boundary_factor", "boundary_mean", "fill_holes", "m
 # glibc's allocator settings for the worker processes. Dask starts its workers with MALLOC_TRIM_THRESHOLD_
 # = 65536, so that freed memory leaves the resident size it watches at once; setting it also stops glibc from
 # raising its mmap threshold, so every large array of every tile is mapped, faulted in page by page and
-# unmapped afresh. On a 1M-point cloud's tiles that made them 1.2 times slower than under glibc's defaults,
-# and these two settings (the dbrg program's, cli/allocator_settings.cpp) 0.9 times (docs/tiles.md): arrays
-# under 32 MiB come from the heap, and up to 64 MiB of freed memory stays for the next task.
+# unmapped afresh. On a 1M-point cloud's tiles that made them 1.2-1.4 times slower than under glibc's
+# defaults, and these two settings (the dbrg program's, cli/allocator_settings.cpp) 0.95 times
+# (docs/tiles.md): arrays under 32 MiB come from the heap, and up to 64 MiB of freed memory stays for the
+# next task.
 WORKER_MALLOC_ENVIRONMENT = {"MALLOC_TRIM_THRESHOLD_": str(64 << 20), "MALLOC_MMAP_THRESHOLD_": str(32 << 20)}
+_CLUSTER_START = threading.Lock()
 
 
 class Plan:
@@ -195,26 +198,30 @@ def _open_client(client, scheduler, n_workers, memory_limit):
 
 def local_cluster(n_workers=2, memory_limit="1GiB"):
     """A distributed.LocalCluster of `n_workers` worker processes of one thread and `memory_limit` each, as
-    reconstruct() starts when given no client or scheduler: its workers start with
-    WORKER_MALLOC_ENVIRONMENT (in place of Dask's MALLOC_TRIM_THRESHOLD_ and of the same variables in this
-    process's environment, which the workers would otherwise inherit)."""
+    reconstruct() starts when given no client or scheduler. The workers it starts, and any of them Dask
+    restarts, start with WORKER_MALLOC_ENVIRONMENT (in place of Dask's MALLOC_TRIM_THRESHOLD_ and of the
+    same variables in this process's environment, which they would otherwise inherit); workers added later
+    (scale, adapt) start with Dask's setting. Dask's nannies, which live in this process, copy the settings
+    into this process's environment whenever they start a worker."""
     import dask
     from distributed import LocalCluster
     # The nanny takes the workers' environment from this setting, each variable overridden by this
     # process's own, when it is created; it sets them again for each worker it starts, a restarted one too.
-    environment = dict(dask.config.get("distributed.nanny.pre-spawn-environ"), **WORKER_MALLOC_ENVIRONMENT)
-    saved = {name: os.environ.get(name) for name in WORKER_MALLOC_ENVIRONMENT}
-    os.environ.update(WORKER_MALLOC_ENVIRONMENT)
-    try:
-        with dask.config.set({"distributed.nanny.pre-spawn-environ": environment}):
-            return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
-                                dashboard_address=":0")
-    finally:
-        for name, value in saved.items():
-            if value is None:
-                os.environ.pop(name, None)
-            else:
-                os.environ[name] = value
+    # Both are process-wide, so two calls at once take turns.
+    with _CLUSTER_START:
+        environment = dict(dask.config.get("distributed.nanny.pre-spawn-environ"), **WORKER_MALLOC_ENVIRONMENT)
+        saved = {name: os.environ.get(name) for name in WORKER_MALLOC_ENVIRONMENT}
+        os.environ.update(WORKER_MALLOC_ENVIRONMENT)
+        try:
+            with dask.config.set({"distributed.nanny.pre-spawn-environ": environment}):
+                return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                                    memory_limit=memory_limit, dashboard_address=":0")
+        finally:
+            for name, value in saved.items():
+                if value is None:
+                    os.environ.pop(name, None)
+                else:
+                    os.environ[name] = value
 
 
 def _wait(client, futures, progress):
