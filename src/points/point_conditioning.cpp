@@ -49,9 +49,11 @@ dbrg_status exact_origin(const double* xyz, size_t count, int axis, double minim
 // The exact predicates need every coordinate to be a multiple of 2^-200 (so no product of differences
 // underflows): rounding to that grid moves a point by at most 2^-201 of the cloud's extent, which merges
 // only points that no double-precision computation on the whole cloud could tell apart anyway.
+// Products with powers of two instead of ldexp calls, exact here: |x| <= 1, and a double of 2^52 or more is
+// already an integer.
 double snap_to_predicate_grid(double x) {
-    const int grid_exponent = 200;
-    return ldexp(nearbyint(ldexp(x, grid_exponent)), -grid_exponent);
+    const double units = x * 0x1p200;
+    return (fabs(units) < 0x1p52 ? nearbyint(units) : units) * 0x1p-200;
 }
 
 struct IndexedPoint {
@@ -159,10 +161,16 @@ dbrg_status condition(const double* xyz, size_t count, const ProgressSpan& progr
     if (!sorted.resize(count) || (sort_needs_scratch(count, parts) && !scratch.resize(count))) {
         return context.fail_out_of_memory();
     }
+    // The scaling as a product where 2^scale_exponent is a normal double: both round the exact product once.
+    const bool scale_by_product = out.scale_exponent >= -1022 && out.scale_exponent <= 1023;
+    const double scale = scale_by_product ? ldexp(1.0, out.scale_exponent) : 0.0;
     DBRG_PROPAGATE(progress.part(0.11, 0.2).for_each_step(count, parts, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             IndexedPoint& q = sorted[i];
-            for (int k = 0; k < 3; ++k) q.p[k] = snap_to_predicate_grid(ldexp(xyz[3 * i + k] - out.origin[k], out.scale_exponent));
+            for (int k = 0; k < 3; ++k) {
+                const double shifted = xyz[3 * i + k] - out.origin[k];
+                q.p[k] = snap_to_predicate_grid(scale_by_product ? shifted * scale : ldexp(shifted, out.scale_exponent));
+            }
             q.index = static_cast<uint32_t>(i);
         }
     }));
