@@ -419,3 +419,22 @@ TEST_CASE("every stage reports from 0 to 1, and each pass of growing and hole fi
         require_nothing_held(allocator);
     }
 }
+
+TEST_CASE("large fills map their pages first and keep what the memory holds, from malloc and a caller's allocator") {
+    test::CountingAllocator allocator;
+    Memory from_malloc(nullptr), from_caller(allocator.get());
+    CHECK(from_malloc.uses_system_allocator());
+    CHECK_FALSE(from_caller.uses_system_allocator());
+    for (Memory* memory : {&from_malloc, &from_caller}) {
+        Array<uint32_t> values(*memory);
+        // Written in three steps: a small fill, a fill of many pages after it, and advice over all of it.
+        const size_t small = 1000, large = size_t(3) << 20;
+        REQUIRE(values.resize(small, 7));
+        REQUIRE(values.resize(small + large, 9));
+        memory->populate(values.data(), values.size() * sizeof(uint32_t));
+        size_t wrong = 0;
+        for (size_t i = 0; i < values.size(); ++i) wrong += values[i] != (i < small ? 7u : 9u);
+        CHECK(wrong == 0);
+    }
+    CHECK(allocator.live_blocks() == 0);
+}

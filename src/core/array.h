@@ -61,6 +61,8 @@ public:
     // New elements are copies of `fill`.
     bool resize(size_t size, const T& fill = T()) {
         if (!reserve(size)) return false;
+        const size_t added_bytes = size > size_ ? (size - size_) * sizeof(T) : 0;
+        if (added_bytes >= POPULATE_BYTES) memory_->populate(data_ + size_, added_bytes);
         for (size_t i = size_; i < size; ++i) data_[i] = fill;
         size_ = size;
         return true;
@@ -111,6 +113,10 @@ public:
     }
 
 private:
+    // Fills of at least this many bytes (a few hundred pages) have their pages mapped in one call first
+    // (Memory::populate).
+    static constexpr size_t POPULATE_BYTES = size_t(1) << 20;
+
     size_t grown_capacity() const { return capacity_ < 8 ? 8 : capacity_ + capacity_ / 2; }
 
     Memory* memory_;

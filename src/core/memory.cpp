@@ -1,7 +1,13 @@
 // Memory: the caller's allocator behind a small interface that counts bytes and remembers failure.
 #include "core/memory.h"
 
+#include <errno.h>
+#include <stdint.h>
 #include <stdlib.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 namespace dbrg {
 namespace {
@@ -52,6 +58,23 @@ void Memory::release(void* block, size_t size) {
     if (!block) return;
     allocator_.deallocate(allocator_.user, block, size);
     add(0, size);
+}
+
+void Memory::populate(void* data, size_t bytes) const {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    if (!system_) return;
+    const long page_size = sysconf(_SC_PAGESIZE);
+    if (page_size <= 0) return;
+    const uintptr_t page = static_cast<uintptr_t>(page_size);
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + page - 1) & ~(page - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(page - 1);
+    const int saved_errno = errno;
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+    errno = saved_errno;
+#else
+    (void)data;
+    (void)bytes;
+#endif
 }
 
 void Memory::count_in(MemoryMeter* meter) {

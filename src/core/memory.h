@@ -28,6 +28,11 @@ public:
     // NULL on failure; the old block then stays valid.
     void* reallocate(void* block, size_t old_size, size_t new_size);
     void release(void* block, size_t size);
+    // Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
+    // page fault at a time as they are first written: on a virtual machine each fault is expensive. For
+    // memory about to be written in full. Advice only, and only for malloc's memory (a caller's allocator
+    // may hand out memory the library must not give advice about); errno is left as it was.
+    void populate(void* data, size_t bytes) const;
 
     bool failed() const { return failed_; }
     // True when the blocks come from the C library's malloc, not from a caller's allocator: only then may

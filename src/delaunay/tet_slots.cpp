@@ -1,11 +1,6 @@
 // Tetrahedron slots during construction: taken from a thread's free list or chunk or from the end of the
 // store, which is reserved ahead of need and written in steps.
 #include <algorithm>
-#if defined(__linux__)
-#include <errno.h>
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
 
 #include "core/parallel.h"
 #include "core/status.h"
@@ -30,28 +25,6 @@ constexpr size_t MIN_ENTRIES_PER_FILL_THREAD = 1 << 18;
 // inserted are written: the initial reservation (6 per point) is then written within the first fifth of
 // the points, before the last BRIO round (three quarters of them) starts.
 constexpr size_t SLOTS_AHEAD_PER_POINT = 32;
-
-// Asks the kernel to map the whole pages inside [data, data + bytes) now, in one call, instead of one
-// page fault at a time as the store fills: on a virtual machine each fault is expensive, and the store is
-// written in full anyway. Advice only, and only for malloc's memory: a caller's allocator may hand out
-// memory the library must not give advice about. errno is left as it was.
-void populate(const Memory& memory, void* data, size_t bytes) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    if (!memory.uses_system_allocator()) return;
-    const long page_size = sysconf(_SC_PAGESIZE);
-    if (page_size <= 0) return;
-    const uintptr_t page = static_cast<uintptr_t>(page_size);
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + page - 1) & ~(page - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(page - 1);
-    const int saved_errno = errno;
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
-    errno = saved_errno;
-#else
-    (void)memory;
-    (void)data;
-    (void)bytes;
-#endif
-}
 
 } // namespace
 
@@ -136,8 +109,8 @@ dbrg_status DelaunayBuilder::write_store(size_t slots) {
     uint32_t* const neighbours = adjacency.data() + old_size;
     const uint32_t parts = part_count(context_.params.threads, new_size - old_size, MIN_ENTRIES_PER_FILL_THREAD);
     for_each_slice(new_size - old_size, parts, [&](size_t begin, size_t end) {
-        populate(memory_, vertex_ids + begin, (end - begin) * sizeof(uint32_t));
-        populate(memory_, neighbours + begin, (end - begin) * sizeof(uint32_t));
+        memory_.populate(vertex_ids + begin, (end - begin) * sizeof(uint32_t));
+        memory_.populate(neighbours + begin, (end - begin) * sizeof(uint32_t));
         std::fill(vertex_ids + begin, vertex_ids + end, 0u);
         std::fill(neighbours + begin, neighbours + end, 0u);
     });
@@ -150,8 +123,8 @@ dbrg_status DelaunayBuilder::write_store(size_t slots) {
 // Maps the pages of slots `from` to `to` without writing them: the threads of the last round may be
 // writing some of those slots meanwhile, and mapping leaves what a page holds as it is.
 void DelaunayBuilder::map_store(size_t from, size_t to) {
-    populate(memory_, vertex_ + 4 * from, 4 * (to - from) * sizeof(uint32_t));
-    populate(memory_, adjacency_ + 4 * from, 4 * (to - from) * sizeof(uint32_t));
+    memory_.populate(vertex_ + 4 * from, 4 * (to - from) * sizeof(uint32_t));
+    memory_.populate(adjacency_ + 4 * from, 4 * (to - from) * sizeof(uint32_t));
 }
 
 // The unused rest of the thread's chunk goes onto its free list.
