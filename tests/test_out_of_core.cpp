@@ -26,6 +26,7 @@
 #include "tiles/cloud_files.h"
 #include "tiles/out_of_core.h"
 #include "tiles/point_spacing.h"
+#include "tiles/tiled_reconstruction.h"
 
 using namespace dbrg;
 namespace fs = std::filesystem;
@@ -185,6 +186,61 @@ TEST_CASE("streamed passes give the whole cloud's count, box and spacing, whatev
     }
     CHECK(walls[0].size() == 3);
     CHECK(walls[0] == walls[1]);
+}
+
+TEST_CASE("the whole cloud's spacing and walls: the sample's 90th percentile nearest distance, and quantiles") {
+    // A random sphere with exact duplicates (distance 0: not a neighbour) and isolated outliers on a
+    // lattice around it, farther from everything than the search's 16 rings of cells reach (left out).
+    std::vector<double> xyz;
+    std::mt19937_64 random(5);
+    std::normal_distribution<double> normal;
+    for (int i = 0; i < 30000; ++i) {
+        const double x = normal(random), y = normal(random), z = normal(random), r = std::sqrt(x * x + y * y + z * z);
+        xyz.insert(xyz.end(), {x / r, y / r, z / r});
+    }
+    xyz.insert(xyz.end(), xyz.begin(), xyz.begin() + 3 * 500);
+    for (int i = 0; i < 125; ++i) {
+        const double x = 2.5 * (i % 5 - 2), y = 2.5 * (i / 5 % 5 - 2), z = 2.5 * (i / 25 - 2);
+        if (std::sqrt(x * x + y * y + z * z) > 3) xyz.insert(xyz.end(), {x, y, z});
+    }
+    const size_t count = xyz.size() / 3;
+    double low[3] = {xyz[0], xyz[1], xyz[2]}, high[3] = {xyz[0], xyz[1], xyz[2]};
+    for (size_t i = 0; i < count; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            low[axis] = std::min(low[axis], xyz[3 * i + axis]);
+            high[axis] = std::max(high[axis], xyz[3 * i + axis]);
+        }
+    }
+    const double cell = spacing_grid_cell(std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2]}), count);
+    std::vector<double> nearest;
+    size_t outliers = 0;
+    for (size_t i = 0; i < count; ++i) {
+        if (coordinate_hash(&xyz[3 * i]) % spacing_sample_stride(count) != 0) continue;
+        double best = HUGE_VAL;
+        for (size_t j = 0; j < count; ++j) {
+            const double d = std::hypot(xyz[3 * j] - xyz[3 * i], xyz[3 * j + 1] - xyz[3 * i + 1], xyz[3 * j + 2] - xyz[3 * i + 2]);
+            if (d > 0) best = std::min(best, d);
+        }
+        // In the cloud, or an outlier beyond 16 rings of cells (16 sqrt(3) cells away at the least).
+        REQUIRE((best < 2 * cell || best > 30 * cell));
+        if (best < 2 * cell) nearest.push_back(best);
+        outliers += best > 30 * cell;
+    }
+    REQUIRE(nearest.size() > 1000);
+    REQUIRE(outliers > 0);
+    std::sort(nearest.begin(), nearest.end());
+    CHECK(whole_cloud_spacing(xyz) == nearest[nearest.size() * 9 / 10]);
+
+    dbrg_params params;
+    dbrg_params_init(&params);
+    Context context(params);
+    TilingPlan plan(context.memory);
+    REQUIRE(plan_tiling(xyz.data(), count, 6, context, plan) == DBRG_OK);
+    std::vector<double> along;
+    for (size_t i = 0; i < count; ++i) along.push_back(xyz[3 * i + plan.axis]);
+    std::sort(along.begin(), along.end());
+    REQUIRE(plan.walls.size() == 5);
+    for (size_t k = 1; k < 6; ++k) CHECK(plan.walls[k - 1] == along[count * k / 6]);
 }
 
 TEST_CASE("each point goes to the bucket files of the slabs whose core and halo hold it, its position its id") {

@@ -31,9 +31,43 @@ struct CellGrid {
     static uint64_t key(int64_t x, int64_t y, int64_t z) { return uint64_t(x) << 42 | uint64_t(y) << 21 | uint64_t(z); }
 };
 
+// The points filed by cell in hashed buckets (a bucket holds its cells' entries together, with their
+// keys): one counting pass instead of a sort of all the points, and a lookup without a binary search.
+struct CellBuckets {
+    explicit CellBuckets(Memory& memory) : first(memory), entries(memory) {}
+
+    uint64_t bucket(uint64_t key) const { return SplitMix64(key).next() >> shift; }
+
+    int shift = 64;
+    Array<uint32_t> first;  // bucket b's entries are entries[first[b]] to entries[first[b + 1]]
+    Array<CellEntry> entries;
+};
+
+// Two points a bucket on average: the bucket starts take at most a quarter of the entries' memory.
+bool file_points(const double* xyz, size_t count, const CellGrid& grid, CellBuckets& buckets) {
+    int bits = 1;
+    while ((size_t(2) << bits) < count) ++bits;
+    buckets.shift = 64 - bits;
+    if (!buckets.first.resize((size_t(1) << bits) + 1, 0) || !buckets.entries.resize(count)) return false;
+    const auto key_of = [&](size_t i) {
+        const double* p = xyz + 3 * i;
+        return CellGrid::key(grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2));
+    };
+    for (size_t i = 0; i < count; ++i) ++buckets.first[buckets.bucket(key_of(i)) + 1];
+    for (size_t b = 1; b < buckets.first.size(); ++b) buckets.first[b] += buckets.first[b - 1];
+    for (size_t i = 0; i < count; ++i) {
+        const uint64_t key = key_of(i);
+        buckets.entries[buckets.first[buckets.bucket(key)]++] = CellEntry{key, static_cast<uint32_t>(i)};
+    }
+    // Each bucket's end moved to its start's place: shift back.
+    for (size_t b = buckets.first.size() - 1; b > 0; --b) buckets.first[b] = buckets.first[b - 1];
+    buckets.first[0] = 0;
+    return true;
+}
+
 // Distance from point `i` to its nearest other point, searching rings of cells outward; HUGE_VAL when
 // none is within MAX_RINGS cells.
-double nearest_distance(const double* xyz, size_t i, const CellGrid& grid, const Array<CellEntry>& cells) {
+double nearest_distance(const double* xyz, size_t i, const CellGrid& grid, const CellBuckets& buckets) {
     const double* p = xyz + 3 * i;
     const int64_t c[3] = {grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)};
     const int64_t limit = int64_t(1) << 21;
@@ -46,10 +80,11 @@ double nearest_distance(const double* xyz, size_t i, const CellGrid& grid, const
                                        y == c[1] + ring || z == c[2] - ring || z == c[2] + ring;
                     if (!shell || x < 0 || y < 0 || z < 0 || x >= limit || y >= limit || z >= limit) continue;
                     const uint64_t key = CellGrid::key(x, y, z);
-                    const CellEntry* at = std::lower_bound(cells.begin(), cells.end(), key,
-                                                           [](const CellEntry& e, uint64_t k) { return e.key < k; });
-                    for (; at != cells.end() && at->key == key; ++at) {
-                        const double* q = xyz + 3 * size_t(at->point);
+                    const uint64_t b = buckets.bucket(key);
+                    for (uint32_t e = buckets.first[b]; e < buckets.first[b + 1]; ++e) {
+                        const CellEntry& entry = buckets.entries[e];
+                        if (entry.key != key) continue;  // another cell in the same bucket
+                        const double* q = xyz + 3 * size_t(entry.point);
                         const double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
                         const double d = sqrt(dx * dx + dy * dy + dz * dz);
                         if (d > 0 && d < best) best = d;
@@ -93,21 +128,13 @@ dbrg_status estimate_spacing(const double* xyz, size_t count, Context& context, 
     const double extent = std::max({high[0] - grid.low[0], high[1] - grid.low[1], high[2] - grid.low[2]});
     if (!(extent > 0)) return DBRG_OK;
     grid.cell = spacing_grid_cell(extent, count);
-    Array<CellEntry> cells(context.memory);
-    if (!cells.reserve(count)) return context.fail_out_of_memory();
-    for (size_t i = 0; i < count; ++i) {
-        const double* p = xyz + 3 * i;
-        cells.push_back({CellGrid::key(grid.coordinate(p, 0), grid.coordinate(p, 1), grid.coordinate(p, 2)),
-                         static_cast<uint32_t>(i)});
-    }
-    std::sort(cells.begin(), cells.end(), [](const CellEntry& a, const CellEntry& b) {
-        return a.key != b.key ? a.key < b.key : a.point < b.point;
-    });
+    CellBuckets buckets(context.memory);
+    if (!file_points(xyz, count, grid, buckets)) return context.fail_out_of_memory();
     const uint64_t stride = spacing_sample_stride(count);
     Array<double> distances(context.memory);
     for (size_t i = 0; i < count; ++i) {
         if (coordinate_hash(xyz + 3 * i) % stride != 0) continue;
-        const double d = nearest_distance(xyz, i, grid, cells);
+        const double d = nearest_distance(xyz, i, grid, buckets);
         if (d != HUGE_VAL && !distances.push_back(d)) return context.fail_out_of_memory();
     }
     if (distances.empty()) {

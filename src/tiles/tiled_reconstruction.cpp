@@ -46,11 +46,17 @@ dbrg_status slab_walls(const double* xyz, size_t count, int axis, uint32_t tile_
     Array<double> values(context.memory);
     if (!values.resize(count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < count; ++i) values[i] = xyz[3 * i + axis];
-    std::sort(values.begin(), values.end());
+    const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
+    const double low = *lowest, high = *highest;
+    // The order statistics at the walls' ranks, each selected among the values above the previous one.
+    size_t selected = 0;
     for (uint32_t k = 1; k < tile_count; ++k) {
-        const double wall = values[count * k / tile_count];
-        const double previous = walls.empty() ? values[0] : walls[walls.size() - 1];
-        if (!(wall - previous >= min_width && values[count - 1] - wall >= min_width)) continue;
+        const size_t rank = count * k / tile_count;
+        std::nth_element(values.begin() + selected, values.begin() + rank, values.end());
+        selected = rank;
+        const double wall = values[rank];
+        const double previous = walls.empty() ? low : walls[walls.size() - 1];
+        if (!(wall - previous >= min_width && high - wall >= min_width)) continue;
         if (!walls.push_back(wall)) return context.fail_out_of_memory();
     }
     return DBRG_OK;
