@@ -18,8 +18,7 @@ this package importable on the workers.
 """
 
 import ctypes
-import os
-import threading
+import platform
 import warnings
 
 import numpy as np
@@ -27,22 +26,36 @@ import numpy as np
 from . import _capi
 from . import _error, _mesh, _params, _point_array, library, reconstruct as _reconstruct_one
 
-__all__ = ["reconstruct", "plan", "Plan", "local_cluster", "WORKER_MALLOC_ENVIRONMENT"]
+__all__ = ["reconstruct", "plan", "Plan", "local_cluster"]
 
 _OK = _capi.ENUMS["dbrg_status"]["DBRG_OK"]
 # What a task is given of the caller's options: the surface parameters, one thread (a worker is one task).
 _OPTIONS = ("sliver_angle", "boundary_factor", "boundary_mean", "fill_holes", "max_hole_edges", "max_components",
             "backend", "cleaning")
 
-# glibc's allocator settings for the worker processes. Dask starts its workers with MALLOC_TRIM_THRESHOLD_
-# = 65536, so that freed memory leaves the resident size it watches at once; setting it also stops glibc from
-# raising its mmap threshold, so every large array of every tile is mapped, faulted in page by page and
-# unmapped afresh. On a 1M-point cloud's tiles that made them 1.2-1.4 times slower than under glibc's
-# defaults, and these two settings (the dbrg program's, cli/allocator_settings.cpp) 0.95 times
-# (docs/tiles.md): arrays under 32 MiB come from the heap, and up to 64 MiB of freed memory stays for the
-# next task.
-WORKER_MALLOC_ENVIRONMENT = {"MALLOC_TRIM_THRESHOLD_": str(64 << 20), "MALLOC_MMAP_THRESHOLD_": str(32 << 20)}
-_CLUSTER_START = threading.Lock()
+# glibc's allocator settings for the processes that run the tasks, the dbrg program's own
+# (cli/allocator_settings.cpp): freed blocks up to 64 MiB stay for the next task, and arrays under 32 MiB come
+# from the heap. Dask starts its workers with MALLOC_TRIM_THRESHOLD_=65536, so that freed memory leaves the
+# resident size it watches at once; that also stops glibc from raising its mmap threshold, so every large
+# array of every tile was mapped, faulted in page by page and unmapped afresh: on a 1M-point cloud's tiles
+# 1.2-1.4 times slower than glibc's defaults, and these settings 0.95 times (docs/tiles.md). Each task sets
+# them in its worker (mallopt, once a process), so every worker has them: those a cluster starts later or in
+# place of a failed one, and those of a cluster the caller runs.
+_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # glibc's malloc.h
+_TRIM_THRESHOLD, _MMAP_THRESHOLD = 64 << 20, 32 << 20
+_allocator_set = False
+
+
+def _keep_freed_blocks():
+    """Sets this process's trim and mmap thresholds when the C library is glibc (elsewhere: nothing)."""
+    global _allocator_set
+    if _allocator_set or platform.libc_ver()[0] != "glibc":
+        return
+    mallopt = ctypes.CDLL(None).mallopt
+    mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
+    mallopt(_M_TRIM_THRESHOLD, _TRIM_THRESHOLD)
+    mallopt(_M_MMAP_THRESHOLD, _MMAP_THRESHOLD)
+    _allocator_set = True
 
 
 class Plan:
@@ -108,6 +121,7 @@ def _tile_result(lib, status, handle, index_type):
 def tile_task(xyz, ids, low, high, options):
     """A tile: dbrg_reconstruct_tile on its points (core and halo) with their global ids. Returns the
     owned faces as an (M, 3) array of global ids, of the ids' type."""
+    _keep_freed_blocks()
     lib = library()
     xyz, view = _view(xyz)
     index_type, ids = ids.dtype, np.ascontiguousarray(ids, dtype=np.uint64)
@@ -126,6 +140,7 @@ def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
     """A wall's stitch: dbrg_seam_stitch on the points and faces near the wall (global ids). Returns
     (dropped, added): the indices into `faces` of the faces to drop, and the (K, 3) faces to add, of the
     ids' type."""
+    _keep_freed_blocks()
     lib = library()
     xyz, view = _view(xyz)
     index_type, ids = ids.dtype, np.ascontiguousarray(ids, dtype=np.uint64)
@@ -198,30 +213,10 @@ def _open_client(client, scheduler, n_workers, memory_limit):
 
 def local_cluster(n_workers=2, memory_limit="1GiB"):
     """A distributed.LocalCluster of `n_workers` worker processes of one thread and `memory_limit` each, as
-    reconstruct() starts when given no client or scheduler. The workers it starts, and any of them Dask
-    restarts, start with WORKER_MALLOC_ENVIRONMENT (in place of Dask's MALLOC_TRIM_THRESHOLD_ and of the
-    same variables in this process's environment, which they would otherwise inherit); workers added later
-    (scale, adapt) start with Dask's setting. Dask's nannies, which live in this process, copy the settings
-    into this process's environment whenever they start a worker."""
-    import dask
+    reconstruct() starts when given no client or scheduler."""
     from distributed import LocalCluster
-    # The nanny takes the workers' environment from this setting, each variable overridden by this
-    # process's own, when it is created; it sets them again for each worker it starts, a restarted one too.
-    # Both are process-wide, so two calls at once take turns.
-    with _CLUSTER_START:
-        environment = dict(dask.config.get("distributed.nanny.pre-spawn-environ"), **WORKER_MALLOC_ENVIRONMENT)
-        saved = {name: os.environ.get(name) for name in WORKER_MALLOC_ENVIRONMENT}
-        os.environ.update(WORKER_MALLOC_ENVIRONMENT)
-        try:
-            with dask.config.set({"distributed.nanny.pre-spawn-environ": environment}):
-                return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
-                                    memory_limit=memory_limit, dashboard_address=":0")
-        finally:
-            for name, value in saved.items():
-                if value is None:
-                    os.environ.pop(name, None)
-                else:
-                    os.environ[name] = value
+    return LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, memory_limit=memory_limit,
+                        dashboard_address=":0")
 
 
 def _wait(client, futures, progress):
