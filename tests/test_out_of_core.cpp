@@ -194,14 +194,13 @@ TEST_CASE("the whole cloud's spacing and walls: the sample's 90th percentile nea
     std::vector<double> xyz;
     std::mt19937_64 random(5);
     std::normal_distribution<double> normal;
-    for (int i = 0; i < 30000; ++i) {
+    for (int i = 0; i < 8000; ++i) {
         const double x = normal(random), y = normal(random), z = normal(random), r = std::sqrt(x * x + y * y + z * z);
         xyz.insert(xyz.end(), {x / r, y / r, z / r});
     }
     xyz.insert(xyz.end(), xyz.begin(), xyz.begin() + 3 * 500);
-    for (int i = 0; i < 125; ++i) {
-        const double x = 2.5 * (i % 5 - 2), y = 2.5 * (i / 5 % 5 - 2), z = 2.5 * (i / 25 - 2);
-        if (std::sqrt(x * x + y * y + z * z) > 3) xyz.insert(xyz.end(), {x, y, z});
+    for (int i = 0; i < 27; ++i) {
+        if (i != 13) xyz.insert(xyz.end(), {4.0 * (i % 3 - 1), 4.0 * (i / 3 % 3 - 1), 4.0 * (i / 9 - 1)});
     }
     const size_t count = xyz.size() / 3;
     double low[3] = {xyz[0], xyz[1], xyz[2]}, high[3] = {xyz[0], xyz[1], xyz[2]};
@@ -222,8 +221,8 @@ TEST_CASE("the whole cloud's spacing and walls: the sample's 90th percentile nea
             if (d > 0) best = std::min(best, d);
         }
         // In the cloud, or an outlier beyond 16 rings of cells (16 sqrt(3) cells away at the least).
-        REQUIRE((best < 2 * cell || best > 30 * cell));
-        if (best < 2 * cell) nearest.push_back(best);
+        REQUIRE((best < 5 * cell || best > 30 * cell));
+        if (best < 5 * cell) nearest.push_back(best);
         outliers += best > 30 * cell;
     }
     REQUIRE(nearest.size() > 1000);
@@ -236,11 +235,18 @@ TEST_CASE("the whole cloud's spacing and walls: the sample's 90th percentile nea
     Context context(params);
     TilingPlan plan(context.memory);
     REQUIRE(plan_tiling(xyz.data(), count, 6, context, plan) == DBRG_OK);
-    std::vector<double> along;
+    CHECK(plan.spacing == whole_cloud_spacing(xyz));
+    // Quantiles of the coordinates, each kept when its slab is wide enough on both sides.
+    std::vector<double> along, expected;
     for (size_t i = 0; i < count; ++i) along.push_back(xyz[3 * i + plan.axis]);
     std::sort(along.begin(), along.end());
-    REQUIRE(plan.walls.size() == 5);
-    for (size_t k = 1; k < 6; ++k) CHECK(plan.walls[k - 1] == along[count * k / 6]);
+    for (size_t k = 1; k < 6; ++k) {
+        const double wall = along[count * k / 6], previous = expected.empty() ? along.front() : expected.back();
+        const double width = MIN_SLAB_SPACINGS * plan.spacing;
+        if (wall - previous >= width && along.back() - wall >= width) expected.push_back(wall);
+    }
+    REQUIRE(expected.size() >= 2);
+    CHECK(std::vector<double>(plan.walls.begin(), plan.walls.end()) == expected);
 }
 
 TEST_CASE("each point goes to the bucket files of the slabs whose core and halo hold it, its position its id") {
