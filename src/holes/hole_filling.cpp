@@ -9,6 +9,8 @@
 #include <assert.h>
 #include <math.h>
 
+#include <algorithm>
+
 #include "core/status.h"
 #include "grow/surface_geometry.h"
 #include "grow/triangle_geometry.h"
@@ -186,6 +188,11 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, FaceJou
     DBRG_PROPAGATE(undo(journal, before_ears));
     Array<uint32_t> new_starts(context_.memory);
     DBRG_PROPAGATE(enlarge(loop, journal, new_starts));
+    if (MAX_ENLARGEMENTS - enlargements >= SPLITTING_ENLARGEMENTS) {
+        uint32_t loops = 0;
+        if (!count_loops(new_starts, loops)) return context_.fail_out_of_memory();
+        if (loops > 1) return DBRG_OK;
+    }
     for (uint32_t s : new_starts) {
         if (surface_.face_removed(Surface::face_of(s)) || !surface_.is_boundary(s)) continue;  // filled with another
         bool sub_filled = false;
@@ -276,6 +283,17 @@ dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, FaceJournal& journa
     }
     new_starts.shrink(kept);
     return DBRG_OK;
+}
+
+bool HoleFiller::count_loops(const Array<uint32_t>& starts, uint32_t& loops) const {
+    Array<uint32_t> walked(context_.memory);
+    loops = 0;
+    for (uint32_t s : starts) {
+        if (std::find(walked.begin(), walked.end(), s) != walked.end()) continue;
+        ++loops;
+        if (!surface_.walk_loop(s, [&](uint32_t h) { return walked.push_back(h); })) return false;
+    }
+    return true;
 }
 
 dbrg_status HoleFiller::remove_and_record(uint32_t f, FaceJournal& journal) {
