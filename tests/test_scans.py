@@ -63,8 +63,10 @@ class ScansComeOutClosed(unittest.TestCase):
 
     def test_shared_data_rough(self):
         # Rough scans of closed shared-data models: cracks between misregistered views, narrow next to the
-        # faces around them, need hole filling to enlarge them before they close.
-        models = [os.path.join(DATA_DIR, name) for name in ("cheburashka.off", "homer.off")]
+        # faces around them, need hole filling to enlarge them before they close. The cow's thin legs and
+        # horns stay on: enlarging a hole until its rim falls apart and closing each side on its own cut
+        # two of them off.
+        models = [os.path.join(DATA_DIR, name) for name in ("cheburashka.off", "homer.off", "cow.ply")]
         if not all(os.path.exists(m) for m in models):
             self.skipTest(f"no shared data in {DATA_DIR}")
         for model in models:
