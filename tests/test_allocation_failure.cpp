@@ -420,7 +420,7 @@ TEST_CASE("every stage reports from 0 to 1, and each pass of growing and hole fi
     }
 }
 
-TEST_CASE("large fills map their pages first and keep what the memory holds, from malloc and a caller's allocator") {
+TEST_CASE("page advice before large fills keeps what the memory holds, from malloc and a caller's allocator") {
     test::CountingAllocator allocator;
     Memory from_malloc(nullptr), from_caller(allocator.get());
     CHECK(from_malloc.uses_system_allocator());

@@ -217,7 +217,9 @@ TEST_CASE("the whole cloud's spacing and walls: the sample's 90th percentile nea
         if (coordinate_hash(&xyz[3 * i]) % spacing_sample_stride(count) != 0) continue;
         double best = HUGE_VAL;
         for (size_t j = 0; j < count; ++j) {
-            const double d = std::hypot(xyz[3 * j] - xyz[3 * i], xyz[3 * j + 1] - xyz[3 * i + 1], xyz[3 * j + 2] - xyz[3 * i + 2]);
+            // The library's formula, so that the same distance comes out to the last bit.
+            const double dx = xyz[3 * j] - xyz[3 * i], dy = xyz[3 * j + 1] - xyz[3 * i + 1], dz = xyz[3 * j + 2] - xyz[3 * i + 2];
+            const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
             if (d > 0) best = std::min(best, d);
         }
         // In the cloud, or an outlier beyond 16 rings of cells (16 sqrt(3) cells away at the least).

@@ -188,10 +188,8 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, FaceJou
     DBRG_PROPAGATE(undo(journal, before_ears));
     Array<uint32_t> new_starts(context_.memory);
     DBRG_PROPAGATE(enlarge(loop, journal, new_starts));
-    if (MAX_ENLARGEMENTS - enlargements >= SPLITTING_ENLARGEMENTS) {
-        uint32_t loops = 0;
-        if (!count_loops(new_starts, loops)) return context_.fail_out_of_memory();
-        if (loops > 1) return DBRG_OK;
+    if (enlargements <= MAX_ENLARGEMENTS - SPLITTING_ENLARGEMENTS && !on_one_loop(new_starts)) {
+        return context_.memory.failed() ? context_.fail_out_of_memory() : DBRG_OK;
     }
     for (uint32_t s : new_starts) {
         if (surface_.face_removed(Surface::face_of(s)) || !surface_.is_boundary(s)) continue;  // filled with another
@@ -285,13 +283,14 @@ dbrg_status HoleFiller::enlarge(const Array<uint32_t>& loop, FaceJournal& journa
     return DBRG_OK;
 }
 
-bool HoleFiller::count_loops(const Array<uint32_t>& starts, uint32_t& loops) const {
-    Array<uint32_t> walked(context_.memory);
-    loops = 0;
+bool HoleFiller::on_one_loop(const Array<uint32_t>& starts) const {
+    if (starts.empty()) return true;
+    Array<uint32_t> loop(context_.memory);
+    surface_.walk_loop(starts[0], [&](uint32_t h) {
+        return loop.size() < context_.params.max_hole_edges && loop.push_back(h);
+    });
     for (uint32_t s : starts) {
-        if (std::find(walked.begin(), walked.end(), s) != walked.end()) continue;
-        ++loops;
-        if (!surface_.walk_loop(s, [&](uint32_t h) { return walked.push_back(h); })) return false;
+        if (std::find(loop.begin(), loop.end(), s) == loop.end()) return false;
     }
     return true;
 }

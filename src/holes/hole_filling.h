@@ -68,11 +68,12 @@ private:
     // How often a hole may be enlarged by removing its boundary triangles before it is left open. Where
     // growing folded the surface over a hole (a pleat: the faces around it overlap it, so every ear turns
     // over), the fold reaches two or three rings out: random points on a sphere leave 1 to 23 holes with
-    // two enlargements and none with four (docs/benchmarks.md, "Holes in random samples").
+    // two enlargements and none at 100k-500k points with four (docs/benchmarks.md, "Holes in random samples").
     static constexpr uint32_t MAX_ENLARGEMENTS = 4;
     // Enlargements after this many must leave the hole one loop: one that cuts the surface apart (a band of
     // faces across a thin part removed) would fill each side on its own, cutting the part off.
     static constexpr uint32_t SPLITTING_ENLARGEMENTS = 2;
+    static_assert(SPLITTING_ENLARGEMENTS <= MAX_ENLARGEMENTS, "the enlargements that may split are among all");
 
     // Components smaller than this that hole filling leaves apart from the rest are removed (as in growing).
     static constexpr uint32_t MIN_ISLAND_FACES = 16;
@@ -121,8 +122,9 @@ private:
     dbrg_status clip_ears(Array<uint32_t>& corners, FaceJournal& journal, bool& filled);
     bool ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, bool closes_hole) const;
     dbrg_status enlarge(const Array<uint32_t>& loop, FaceJournal& journal, Array<uint32_t>& new_starts);
-    // How many boundary loops the half-edges `starts` lie on (false when out of memory).
-    bool count_loops(const Array<uint32_t>& starts, uint32_t& loops) const;
+    // Whether the boundary half-edges `starts` all lie on one loop of at most max_hole_edges edges (a longer
+    // one is not filled anyway). False also when out of memory.
+    bool on_one_loop(const Array<uint32_t>& starts) const;
     dbrg_status remove_and_record(uint32_t face, FaceJournal& journal);
     bool record_removed(uint32_t face, FaceJournal& journal) const;
     dbrg_status undo(FaceJournal& journal, size_t position);

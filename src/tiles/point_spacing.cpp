@@ -43,7 +43,7 @@ struct CellBuckets {
     Array<CellEntry> entries;
 };
 
-// Two points a bucket on average: the bucket starts take at most a quarter of the entries' memory.
+// One or two points a bucket on average: the bucket starts take at most a quarter of the entries' memory.
 bool file_points(const double* xyz, size_t count, const CellGrid& grid, CellBuckets& buckets) {
     int bits = 1;
     while ((size_t(2) << bits) < count) ++bits;

@@ -48,7 +48,7 @@ dbrg_status slab_walls(const double* xyz, size_t count, int axis, uint32_t tile_
     for (size_t i = 0; i < count; ++i) values[i] = xyz[3 * i + axis];
     const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
     const double low = *lowest, high = *highest;
-    // The order statistics at the walls' ranks, each selected among the values above the previous one.
+    // The order statistics at the walls' ranks, each selected among the values at or above the previous one.
     size_t selected = 0;
     for (uint32_t k = 1; k < tile_count; ++k) {
         const size_t rank = count * k / tile_count;

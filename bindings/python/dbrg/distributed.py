@@ -40,22 +40,27 @@ _OPTIONS = ("sliver_angle", "boundary_factor", "boundary_mean", "fill_holes", "m
 # array of every tile was mapped, faulted in page by page and unmapped afresh: on a 1M-point cloud's tiles
 # 1.2-1.4 times slower than glibc's defaults, and these settings 0.95 times (docs/tiles.md). Each task sets
 # them in its worker (mallopt, once a process), so every worker has them: those a cluster starts later or in
-# place of a failed one, and those of a cluster the caller runs.
+# place of a failed one, and those of a cluster the caller runs. Unlike the dbrg program they override
+# MALLOC_* variables in the environment: Dask sets one for every worker, so a worker's environment cannot
+# tell the caller's choice from Dask's.
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # glibc's malloc.h
 _TRIM_THRESHOLD, _MMAP_THRESHOLD = 64 << 20, 32 << 20
-_allocator_set = False
+_allocator_checked = False
 
 
 def _keep_freed_blocks():
-    """Sets this process's trim and mmap thresholds when the C library is glibc (elsewhere: nothing)."""
-    global _allocator_set
-    if _allocator_set or platform.libc_ver()[0] != "glibc":
+    """Sets this process's trim and mmap thresholds when the C library is glibc (elsewhere: nothing). Two
+    tasks at once may both set them: the same values, and mallopt takes glibc's lock."""
+    global _allocator_checked
+    if _allocator_checked:
+        return
+    _allocator_checked = True
+    if platform.libc_ver()[0] != "glibc":
         return
     mallopt = ctypes.CDLL(None).mallopt
     mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
     mallopt(_M_TRIM_THRESHOLD, _TRIM_THRESHOLD)
     mallopt(_M_MMAP_THRESHOLD, _MMAP_THRESHOLD)
-    _allocator_set = True
 
 
 class Plan:
