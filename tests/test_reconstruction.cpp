@@ -105,7 +105,7 @@ TEST_CASE("closed shapes sampled unevenly, as a decimated mesh's vertices are, c
 TEST_CASE("uniformly random points on a sphere come out closed: folds over a hole are enlarged away") {
     // Random (not evenly spaced) samples have clumps, and growing can fold the surface over a small hole:
     // the faces around it overlap it, so every ear turns over. Two enlargements left a hole open on these
-    // two (and on 1 to 23 holes of 100k to 500k points); the third takes the fold away.
+    // two (and on 1 to 23 holes of 100k to 500k points); four close them.
     for (uint64_t seed : {6, 8}) {
         CAPTURE(seed);
         const std::vector<double> xyz = dbrg_test::random_sphere(20000, seed);

@@ -67,7 +67,7 @@ public:
 private:
     // How often a hole may be enlarged by removing its boundary triangles before it is left open. Where
     // growing folded the surface over a hole (a pleat: the faces around it overlap it, so every ear turns
-    // over), the fold reaches two or three rings out: random points on a sphere leave 1 to 23 holes with
+    // over), the fold reaches two to four rings out: random points on a sphere leave 1 to 23 holes with
     // two enlargements and none at 100k-500k points with four (docs/benchmarks.md, "Holes in random samples").
     static constexpr uint32_t MAX_ENLARGEMENTS = 4;
     // Enlargements after this many must leave the hole one loop: one that cuts the surface apart (a band of
