@@ -115,12 +115,14 @@ struct dbrg_mesh : ResultBase {
 };
 
 struct dbrg_tile_mesh : ResultBase {
-    explicit dbrg_tile_mesh(const dbrg_allocator* allocator) : ResultBase(allocator), triangles(memory), dropped(memory) {
+    explicit dbrg_tile_mesh(const dbrg_allocator* allocator)
+        : ResultBase(allocator), triangles(memory), dropped(memory), outliers(memory) {
         memset(&stats, 0, sizeof stats);
         stats.struct_size = sizeof stats;
     }
     Array<uint64_t> triangles;  // global ids
     Array<uint64_t> dropped;    // a seam stitch's: indices into its faces
+    Array<uint64_t> outliers;   // a tile's: global ids of its core's outliers
     dbrg_stats stats;
 };
 
@@ -156,6 +158,34 @@ dbrg_status local_indices(const uint64_t* ids, size_t count, const uint64_t* wan
                                              [](const IdIndex& e, uint64_t id) { return e.id < id; });
         local[i] = at != by_id.end() && at->id == wanted[i] ? at->index : static_cast<uint32_t>(count);
     }
+    return DBRG_OK;
+}
+
+// dbrg_mesh_assemble's outliers, checked against its `count` points and its triangles (`mesh`): sorted,
+// each once, into `left_out`.
+dbrg_status read_outliers(const uint32_t* outliers, size_t outlier_count, const Array<uint32_t>& mesh, size_t count,
+                          Context& context, Array<uint32_t>& left_out) {
+    if (outlier_count > 0 && !outliers) {
+        return context.fail(DBRG_ERR_INVALID_ARGUMENT, "outliers is NULL with an outlier_count of %zu", outlier_count);
+    }
+    Array<uint8_t> is_outlier(context.memory);
+    if (!is_outlier.resize(outlier_count > 0 ? count : 0, 0) || !left_out.reserve(outlier_count)) {
+        return context.fail_out_of_memory();
+    }
+    for (size_t i = 0; i < outlier_count; ++i) {
+        if (outliers[i] >= count) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "outlier %zu is the index %u, past the %zu points", i,
+                                outliers[i], count);
+        }
+        if (!is_outlier[outliers[i]]) left_out.push_back(outliers[i]);
+        is_outlier[outliers[i]] = 1;
+    }
+    for (size_t i = 0; outlier_count > 0 && i < mesh.size(); ++i) {
+        if (is_outlier[mesh[i]]) {
+            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangle %zu uses the outlier %u", i / 3, mesh[i]);
+        }
+    }
+    std::sort(left_out.begin(), left_out.end());
     return DBRG_OK;
 }
 
@@ -210,9 +240,10 @@ dbrg_status sort_by_id(const Array<double>& xyz, const uint64_t* ids, const uint
     return DBRG_OK;
 }
 
-// A call that hands back a dbrg_tile_mesh: `work(context, triangles, dropped)` writes triangles as indices
-// into `points`, handed back as their global ids, and (a stitch) the indices of the faces it drops. A
-// surface needs 4 points; a stitch (`any_count`) takes fewer, and has nothing to grow then.
+// A call that hands back a dbrg_tile_mesh: `work(context, triangles, mesh)` writes triangles as indices
+// into `points`, handed back as their global ids, and (a stitch) the indices of the faces it drops or (a
+// tile) its outliers into `mesh`. A surface needs 4 points; a stitch (`any_count`) takes fewer, and has
+// nothing to grow then.
 template <class Work>
 dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const dbrg_params* given,
                           dbrg_tile_mesh** out, bool any_count, const Work& work) {
@@ -233,8 +264,11 @@ dbrg_status run_tile_call(const dbrg_points* points, const uint64_t* ids, const 
         status = any_count ? check_not_too_many_points(points->count, context) : check_point_count(points->count, context);
     }
     Array<uint32_t> triangles(context.memory);
-    if (status == DBRG_OK) status = work(context, triangles, mesh->dropped);
-    if (status != DBRG_OK) mesh->dropped.release();
+    if (status == DBRG_OK) status = work(context, triangles, *mesh);
+    if (status != DBRG_OK) {
+        mesh->dropped.release();
+        mesh->outliers.release();
+    }
     if (status == DBRG_OK && !mesh->triangles.reserve(triangles.size())) status = context.fail_out_of_memory();
     if (status == DBRG_OK) {
         for (uint32_t v : triangles) mesh->triangles.push_back(ids[v]);
@@ -411,21 +445,27 @@ DBRG_API dbrg_status dbrg_reconstruct_tiled(const dbrg_points* points, uint32_t 
 
 DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint64_t* point_ids, const double* core_low,
                                            const double* core_high, const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out, false, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
+    return run_tile_call(points, point_ids, given, out, false, [&](Context& context, Array<uint32_t>& triangles,
+                                                                   dbrg_tile_mesh& mesh) {
         if (!core_low || !core_high) return context.fail(DBRG_ERR_INVALID_ARGUMENT, "core_low or core_high is NULL");
         TileCore core;
         for (int axis = 0; axis < 3; ++axis) {
             core.low[axis] = core_low[axis];
             core.high[axis] = core_high[axis];
         }
-        return reconstruct_tile(points, core, context, triangles);
+        Array<uint32_t> outliers(context.memory);
+        DBRG_PROPAGATE(reconstruct_tile(points, core, context, triangles, outliers));
+        if (!mesh.outliers.reserve(outliers.size())) return context.fail_out_of_memory();
+        for (uint32_t v : outliers) mesh.outliers.push_back(point_ids[v]);
+        return DBRG_OK;
     });
 }
 
 DBRG_API dbrg_status dbrg_grow_from_surface(const dbrg_points* points, const uint64_t* point_ids,
                                             const uint64_t* seed_triangles, size_t seed_count, const uint8_t* fixed,
                                             const dbrg_params* given, dbrg_tile_mesh** out) {
-    return run_tile_call(points, point_ids, given, out, false, [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>&) {
+    return run_tile_call(points, point_ids, given, out, false, [&](Context& context, Array<uint32_t>& triangles,
+                                                                   dbrg_tile_mesh&) {
         if (seed_count > 0 && !seed_triangles) {
             return context.fail(DBRG_ERR_INVALID_ARGUMENT, "seed_triangles is NULL with a seed_count of %zu",
                                 seed_count);
@@ -474,7 +514,7 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
                                       size_t face_count, const dbrg_tiling* tiling, double wall,
                                       const dbrg_params* given, dbrg_tile_mesh** out) {
     return run_tile_call(points, point_ids, given, out, true,
-                         [&](Context& context, Array<uint32_t>& triangles, Array<uint64_t>& dropped) {
+                         [&](Context& context, Array<uint32_t>& triangles, dbrg_tile_mesh& mesh) {
         int axis;
         double spacing;
         DBRG_PROPAGATE(read_tiling(tiling, context, axis, spacing));
@@ -493,14 +533,15 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
         DBRG_PROPAGATE(stitch_seam(sorted.data(), points->count, local_faces.data(), face_count, axis, wall, spacing,
                                    context, seam_dropped, triangles));
         for (uint32_t& v : triangles) v = order[v];  // back to the caller's indexing
-        if (!dropped.reserve(seam_dropped.size())) return context.fail_out_of_memory();
-        for (uint32_t f : seam_dropped) dropped.push_back(f);
+        if (!mesh.dropped.reserve(seam_dropped.size())) return context.fail_out_of_memory();
+        for (uint32_t f : seam_dropped) mesh.dropped.push_back(f);
         return DBRG_OK;
     });
 }
 
 DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_t* triangles, size_t triangle_count,
-                                        const dbrg_params* given, dbrg_mesh** out_mesh) {
+                                        const uint32_t* outliers, size_t outlier_count, const dbrg_params* given,
+                                        dbrg_mesh** out_mesh) {
     return run_mesh_call(points, given, out_mesh, [&](Context& context, SurfaceResult& surface) {
         Array<double> xyz(context.memory);
         DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
@@ -523,13 +564,21 @@ DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_
                 return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangle %zu repeats a corner", i / 3);
             }
         }
+        Array<uint32_t> left_out(context.memory);
+        DBRG_PROPAGATE(read_outliers(outliers, outlier_count, mesh, points->count, context, left_out));
         context.stats.input_points = static_cast<uint32_t>(points->count);
-        context.stats.unique_points = static_cast<uint32_t>(points->count);
-        return assemble_tiles(xyz, mesh, context, surface);
+        context.stats.unique_points = static_cast<uint32_t>(points->count - left_out.size());
+        return assemble_tiles(xyz, mesh, left_out, context, surface);
     });
 }
 
 DBRG_API void dbrg_tile_mesh_destroy(dbrg_tile_mesh* mesh) { destroy_result(mesh); }
+
+DBRG_API const uint64_t* dbrg_tile_mesh_outliers(const dbrg_tile_mesh* mesh, uint64_t* out_count) {
+    const uint64_t count = mesh ? mesh->outliers.size() : 0;
+    if (out_count) *out_count = count;
+    return count > 0 ? mesh->outliers.data() : nullptr;
+}
 
 DBRG_API dbrg_status dbrg_tile_mesh_status(const dbrg_tile_mesh* mesh) {
     return mesh ? mesh->status : DBRG_ERR_INVALID_ARGUMENT;

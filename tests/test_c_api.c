@@ -481,7 +481,7 @@ static void test_tiles(void) {
     /* Assembling the tiled mesh's own faces gives them back. */
     {
         dbrg_mesh* again = NULL;
-        CHECK(dbrg_mesh_assemble(&p, dbrg_mesh_triangles(mesh), dbrg_mesh_triangle_count(mesh), NULL, &again) == DBRG_OK);
+        CHECK(dbrg_mesh_assemble(&p, dbrg_mesh_triangles(mesh), dbrg_mesh_triangle_count(mesh), NULL, 0, NULL, &again) == DBRG_OK);
         CHECK(dbrg_mesh_triangle_count(again) == dbrg_mesh_triangle_count(mesh));
         dbrg_mesh_destroy(again);
     }

@@ -48,7 +48,76 @@ std::vector<std::array<uint32_t, 3>> oriented_faces(const std::vector<uint32_t>&
     return faces;
 }
 
+// `xyz` with up to `wanted` points added in the box around it, each farther than 20 median spacings from
+// every point before it (surface or added): outliers whatever their neighbourhood, in one process or in a
+// tile. `added` receives their indices, ascending.
+std::vector<double> with_isolated_outliers(std::vector<double> xyz, size_t wanted, std::vector<uint32_t>& added) {
+    const size_t surface = xyz.size() / 3;
+    double low[3], high[3];
+    for (int a = 0; a < 3; ++a) low[a] = high[a] = xyz[a];
+    for (size_t i = 0; i < xyz.size(); ++i) {
+        low[i % 3] = std::min(low[i % 3], xyz[i]);
+        high[i % 3] = std::max(high[i % 3], xyz[i]);
+    }
+    // The median distance from a point to the next one in the sample's order is about the spacing.
+    std::vector<double> steps;
+    for (size_t i = 1; i < surface; i += 97) {
+        double d = HUGE_VAL;
+        for (size_t j = 0; j < surface; ++j) {
+            if (j == i) continue;
+            const double dx = xyz[3 * j] - xyz[3 * i], dy = xyz[3 * j + 1] - xyz[3 * i + 1], dz = xyz[3 * j + 2] - xyz[3 * i + 2];
+            d = std::min(d, dx * dx + dy * dy + dz * dz);
+        }
+        steps.push_back(std::sqrt(d));
+    }
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    const double clearance = 20 * steps[steps.size() / 2];
+    uint64_t state = 12345;
+    const auto uniform = [&]() {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return double(state >> 11) * 0x1p-53;
+    };
+    for (size_t attempt = 0; attempt < 100 * wanted && added.size() < wanted; ++attempt) {
+        double p[3];
+        for (int a = 0; a < 3; ++a) p[a] = low[a] + (high[a] - low[a]) * (1.2 * uniform() - 0.1);
+        bool clear = true;
+        for (size_t j = 0; clear && j < xyz.size() / 3; ++j) {
+            const double dx = xyz[3 * j] - p[0], dy = xyz[3 * j + 1] - p[1], dz = xyz[3 * j + 2] - p[2];
+            clear = dx * dx + dy * dy + dz * dz > clearance * clearance;
+        }
+        if (!clear) continue;
+        added.push_back(static_cast<uint32_t>(xyz.size() / 3));
+        xyz.insert(xyz.end(), p, p + 3);
+    }
+    return xyz;
+}
+
 } // namespace
+
+TEST_CASE("tiles list their cores' outliers, which no stitch grows over, as the single call lists them") {
+    std::vector<uint32_t> planted;
+    const std::vector<double> xyz = with_isolated_outliers(samples::sample(samples::Shape::torus, 20000), 40, planted);
+    REQUIRE(planted.size() >= 20);
+    const test::Reconstruction single = test::reconstruct(xyz);
+    REQUIRE(single.status == DBRG_OK);
+    // A point at the centre of a ring of the surface lies on the plane its neighbours fit and is kept (the
+    // double torus below has one); on the torus every planted point is left out.
+    CHECK(single.outliers == planted);
+    for (uint32_t tiles : {2u, 3u, 5u}) {
+        CAPTURE(tiles);
+        const test::Reconstruction tiled = test::reconstruct_tiled(xyz, tiles);
+        REQUIRE(tiled.status == DBRG_OK);
+        CHECK(tiled.stats.tiles > 1);
+        CHECK(tiled.outliers == single.outliers);
+        CHECK(tiled.stats.outliers == single.outliers.size());
+        const std::set<uint32_t> left_out(planted.begin(), planted.end());
+        size_t used = 0;
+        for (uint32_t v : tiled.triangles) used += left_out.count(v);
+        CHECK(used == 0);
+        test::require_valid_manifold(test::report_of(xyz, tiled.triangles));
+        CHECK(face_agreement(tiled.triangles, single.triangles) >= 0.995);
+    }
+}
 
 TEST_CASE("stitched tiles of a torus, a double torus and a saddle match the single call") {
     const struct {
@@ -396,10 +465,12 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
     const dbrg_tiling& tiling = steps.tiling;
     walls.resize(tiling.wall_count);
     const uint32_t axis = tiling.axis;
+    // The tiles' outliers, which no stitch is handed.
+    std::set<uint64_t> outliers;
     // Points with their coordinate on the axis in [low, high), as a tile or a stitch is handed them.
     const auto points_between = [&](double low, double high, std::vector<double>& part, std::vector<uint64_t>& ids) {
         for (size_t i = 0; i < count; ++i) {
-            if (xyz[3 * i + axis] < low || xyz[3 * i + axis] >= high) continue;
+            if (xyz[3 * i + axis] < low || xyz[3 * i + axis] >= high || outliers.count(base + i)) continue;
             part.insert(part.end(), xyz.begin() + 3 * i, xyz.begin() + 3 * i + 3);
             ids.push_back(base + i);
         }
@@ -417,6 +488,9 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
         REQUIRE(dbrg_reconstruct_tile(&points, ids.data(), low, high, nullptr, &tile) == DBRG_OK);
         const uint64_t* t = dbrg_tile_mesh_triangles(tile);
         faces.insert(faces.end(), t, t + 3 * dbrg_tile_mesh_triangle_count(tile));
+        uint64_t outlier_count = 0;
+        const uint64_t* left_out = dbrg_tile_mesh_outliers(tile, &outlier_count);
+        outliers.insert(left_out, left_out + outlier_count);
         dbrg_tile_mesh_destroy(tile);
     }
     for (size_t half = 0; half < 2; ++half) {
@@ -478,9 +552,11 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
         kept.insert(kept.end(), added.begin(), added.end());
         faces.swap(kept);
     }
-    std::vector<uint32_t> triangles;
+    std::vector<uint32_t> triangles, left_out;
     for (uint64_t id : faces) triangles.push_back(static_cast<uint32_t>(id - base));
-    steps.mesh = test::assemble(xyz, triangles);
+    // Handed over backwards: the assembly takes them in any order.
+    for (auto id = outliers.rbegin(); id != outliers.rend(); ++id) left_out.push_back(static_cast<uint32_t>(*id - base));
+    steps.mesh = test::assemble(xyz, triangles, nullptr, left_out);
     return steps;
 }
 
@@ -508,6 +584,18 @@ TEST_CASE("the tiling steps run by hand give dbrg_reconstruct_tiled's faces, wha
         REQUIRE(reversed.mesh.status == DBRG_OK);
         CHECK(reversed.mesh.triangles == whole.triangles);
     }
+    // With outliers the tiles leave out: the steps hand them to the assembly and to no stitch.
+    std::vector<uint32_t> planted;
+    const std::vector<double> xyz = with_isolated_outliers(samples::sample(samples::Shape::double_torus, 20000), 40, planted);
+    const test::Reconstruction whole = test::reconstruct_tiled(xyz, 5);
+    REQUIRE(whole.status == DBRG_OK);
+    CHECK(!whole.outliers.empty());
+    CHECK(whole.outliers == test::reconstruct(xyz).outliers);
+    const Steps steps = run_steps(xyz, 5, WallOrder::forward, true);
+    REQUIRE(steps.mesh.status == DBRG_OK);
+    CHECK(steps.mesh.triangles == whole.triangles);
+    CHECK(steps.mesh.outliers == whole.outliers);
+    CHECK(steps.mesh.stats.outliers == whole.stats.outliers);
 }
 
 TEST_CASE("the tiling steps check their arguments") {
@@ -596,17 +684,28 @@ TEST_CASE("the tiling steps check their arguments") {
 
     dbrg_mesh* mesh = nullptr;
     const uint32_t past[] = {0, 1, static_cast<uint32_t>(ids.size())};
-    CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, 0, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
     CHECK(std::string(dbrg_mesh_message(mesh)) ==
           "triangle 0 uses the index " + std::to_string(ids.size()) + ", past the " + std::to_string(ids.size()) + " points");
     dbrg_mesh_destroy(mesh);
     const uint32_t degenerate[] = {0, 1, 2, 3, 4, 3};  // the second repeats a corner
-    CHECK(dbrg_mesh_assemble(&points, degenerate, 2, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_mesh_assemble(&points, degenerate, 2, nullptr, 0, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
     CHECK(std::string(dbrg_mesh_message(mesh)) == "triangle 1 repeats a corner");
     dbrg_mesh_destroy(mesh);
-    CHECK(dbrg_mesh_assemble(&points, nullptr, 1, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_mesh_assemble(&points, nullptr, 1, nullptr, 0, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
     dbrg_mesh_destroy(mesh);
-    CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, nullptr) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_mesh_assemble(&points, past, 1, nullptr, 0, nullptr, nullptr) == DBRG_ERR_INVALID_ARGUMENT);
+    const uint32_t triangle[] = {0, 1, 2};
+    const uint32_t outlier_past[] = {static_cast<uint32_t>(ids.size())}, outlier_used[] = {7, 1};
+    CHECK(dbrg_mesh_assemble(&points, triangle, 1, outlier_past, 1, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(std::string(dbrg_mesh_message(mesh)) ==
+          "outlier 0 is the index " + std::to_string(ids.size()) + ", past the " + std::to_string(ids.size()) + " points");
+    dbrg_mesh_destroy(mesh);
+    CHECK(dbrg_mesh_assemble(&points, triangle, 1, outlier_used, 2, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(std::string(dbrg_mesh_message(mesh)) == "triangle 0 uses the outlier 1");
+    dbrg_mesh_destroy(mesh);
+    CHECK(dbrg_mesh_assemble(&points, triangle, 1, nullptr, 2, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
+    dbrg_mesh_destroy(mesh);
 
     // The steps free everything they allocate from the caller's allocator.
     test::CountingAllocator counting;
@@ -617,7 +716,15 @@ TEST_CASE("the tiling steps check their arguments") {
     dbrg_tile_mesh* seam = nullptr;
     REQUIRE(dbrg_seam_stitch(&points, ids.data(), faces, 2, &tiling, 0.0, &params, &seam) == DBRG_OK);
     dbrg_tile_mesh_destroy(seam);
-    REQUIRE(dbrg_mesh_assemble(&points, past, 0, &params, &mesh) == DBRG_OK);
+    REQUIRE(dbrg_mesh_assemble(&points, past, 0, nullptr, 0, &params, &mesh) == DBRG_OK);
+    dbrg_mesh_destroy(mesh);
+    const uint32_t outliers[] = {9, 7, 9};  // any order, repeats counted once
+    REQUIRE(dbrg_mesh_assemble(&points, triangle, 1, outliers, 3, &params, &mesh) == DBRG_OK);
+    uint32_t outlier_count = 0;
+    const uint32_t* listed = dbrg_mesh_outliers(mesh, &outlier_count);
+    REQUIRE(outlier_count == 2);
+    CHECK(listed[0] == 7);
+    CHECK(listed[1] == 9);
     dbrg_mesh_destroy(mesh);
     CHECK(counting.live_blocks() == 0);
     CHECK(counting.contract_violations() == 0);

@@ -451,6 +451,8 @@ typedef struct dbrg_tile_mesh dbrg_tile_mesh;
  * summed in lexicographic order of their coordinates, lies in the half-open box [core_low, core_high).
  * Every tile computes the same centroid for a triangle and half-open cores partition space, so no
  * triangle has two owners.
+ * The points of the core that cleaning leaves out as outliers are listed too (dbrg_tile_mesh_outliers):
+ * every point lies in one core, so the tiles list each outlier once; a stitch must not be given them.
  * Returns DBRG_OK or the status of the first problem, as dbrg_reconstruct.
  * points: the tile's points; read during the call only.
  * point_ids: points->count global ids, distinct; read during the call only.
@@ -548,13 +550,17 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
  * the surface over as dbrg_reconstruct does (boundary loops, statistics). Depends on the
  * set of faces, not their order or orientation. A whole-mesh step: it holds all points and faces, with
  * 32-bit indices.
- * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles with a count, an index past the points, a
- * triangle repeating a corner), or the status of dbrg_reconstruct for bad points.
+ * The tiles' outliers become the mesh's (dbrg_mesh_outliers, stats.outliers), as in dbrg_reconstruct.
+ * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles or outliers with a count, an index past the
+ * points, a triangle repeating a corner or using an outlier), or the status of dbrg_reconstruct for bad points.
  * points: the whole cloud; read during the call only.
  * triangles: 3 * triangle_count indices into `points`. May be NULL when triangle_count is 0.
+ * outliers: outlier_count indices into `points`, in any order (the tiles' dbrg_tile_mesh_outliers). May be
+ *   NULL when outlier_count is 0.
  * params, out_mesh: as in dbrg_reconstruct. */
 DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_t* triangles, size_t triangle_count,
-                                        const dbrg_params* params, dbrg_mesh** out_mesh);
+                                        const uint32_t* outliers, size_t outlier_count, const dbrg_params* params,
+                                        dbrg_mesh** out_mesh);
 
 /* Frees a tile result. NULL is accepted and ignored. */
 DBRG_API void dbrg_tile_mesh_destroy(dbrg_tile_mesh* mesh);
@@ -577,6 +583,11 @@ DBRG_API const uint64_t* dbrg_tile_mesh_triangles(const dbrg_tile_mesh* mesh);
  * writes their number to *out_count. NULL and 0 for other results, NULL or failed ones. out_count may be
  * NULL. */
 DBRG_API const uint64_t* dbrg_tile_mesh_dropped(const dbrg_tile_mesh* mesh, uint64_t* out_count);
+
+/* Returns the global ids of the points of a dbrg_reconstruct_tile call's core left out as outliers,
+ * ascending (since 0.5.0), and writes their number to *out_count. NULL and 0 for other results, NULL or
+ * failed ones. out_count may be NULL. */
+DBRG_API const uint64_t* dbrg_tile_mesh_outliers(const dbrg_tile_mesh* mesh, uint64_t* out_count);
 
 /* Copies the statistics of the call, as dbrg_mesh_stats. */
 DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats* stats);

@@ -248,6 +248,9 @@ private:
                 return status;
             }
             note_peak(mesh);
+            uint64_t outlier_count = 0;
+            const uint64_t* outliers = dbrg_tile_mesh_outliers(mesh, &outlier_count);
+            outliers_.insert(outliers, outliers + outlier_count);
             const uint64_t* triangles = dbrg_tile_mesh_triangles(mesh);
             owned.resize(dbrg_tile_mesh_triangle_count(mesh));
             for (size_t f = 0; f < owned.size(); ++f) std::copy(triangles + 3 * f, triangles + 3 * f + 3, owned[f].v);
@@ -273,7 +276,7 @@ private:
             if (status) status = read_records(faces(uint32_t(w) + side), sides[side]);
             if (!status) return status;
             for (const PointRecord& point : points) {
-                if (std::fabs(point.xyz[axis] - wall) < window) near.add(point);
+                if (std::fabs(point.xyz[axis] - wall) < window && !outliers_.count(point.id)) near.add(point);
             }
         }
         // A face's distance to the wall: its nearest corner's; HUGE_VAL when a corner is beyond the window.
@@ -567,6 +570,7 @@ private:
     io::PointReader reader_;
     CloudSummary summary_;
     double spacing_ = 0;
+    std::unordered_set<uint64_t> outliers_;  // the slabs' outliers, which no stitch is given
     std::vector<double> walls_;
     uint32_t tiles_ = 1;
     TempFolder folder_;

@@ -101,9 +101,10 @@ void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
     total.seconds_fill_holes += piece.seconds_fill_holes;
 }
 
-// Reconstructs tile `k` of the slabs and appends its owned triangles, in the caller's indexing, to `owned`.
+// Reconstructs tile `k` of the slabs and appends its owned triangles and its core's outliers, in the caller's
+// indexing, to `owned` and `outliers`.
 dbrg_status run_tile(const Array<double>& xyz, int axis, const Array<double>& walls, uint32_t k, double halo,
-                     Context& context, Array<uint32_t>& owned) {
+                     Context& context, Array<uint32_t>& owned, Array<uint32_t>& outliers) {
     TileCore core;
     for (int a = 0; a < 3; ++a) {
         core.low[a] = -HUGE_VAL;
@@ -125,14 +126,17 @@ dbrg_status run_tile(const Array<double>& xyz, int axis, const Array<double>& wa
     if (tile_index.size() < 4) return DBRG_OK;  // nothing to reconstruct; the stitch sees these points
     Context tile_context(piece_params(context.params));
     tile_context.memory.count_in(context.memory.meter());  // the call's peak includes the piece's
-    Array<uint32_t> tile_owned(tile_context.memory);
+    Array<uint32_t> tile_owned(tile_context.memory), tile_outliers(tile_context.memory);
     const dbrg_points tile_points = double_points(tile_xyz);
-    const dbrg_status status = reconstruct_tile(&tile_points, core, tile_context, tile_owned);
+    const dbrg_status status = reconstruct_tile(&tile_points, core, tile_context, tile_owned, tile_outliers);
     if (status != DBRG_OK) return context.fail(status, "tile %u: %s", k + 1, tile_context.message());
     add_piece_stats(tile_context.stats, context.stats);
     context.stats.tile_peak_bytes = std::max(context.stats.tile_peak_bytes, tile_context.memory.peak_bytes());
-    if (!owned.reserve(owned.size() + tile_owned.size())) return context.fail_out_of_memory();
+    if (!owned.reserve(owned.size() + tile_owned.size()) || !outliers.reserve(outliers.size() + tile_outliers.size())) {
+        return context.fail_out_of_memory();
+    }
     for (uint32_t v : tile_owned) owned.push_back(tile_index[v]);
+    for (uint32_t v : tile_outliers) outliers.push_back(tile_index[v]);
     return DBRG_OK;
 }
 
@@ -154,12 +158,15 @@ dbrg_status zone_points(const double* xyz, size_t count, int axis, double wall, 
 // The faces of `mesh` (3 global indices each) a stitch of `wall` needs, and the points they and the wall
 // need, as the stitch_seam contract says: the faces with a corner within reach of the wall or sharing a
 // corner with a face that has one in the strip. `faces` receives their indices in `mesh`, `points` the
-// points' global indices, ascending.
-dbrg_status gather_seam(const Array<double>& xyz, const Array<uint32_t>& mesh, int axis, double wall, double spacing,
-                        Context& context, Array<uint32_t>& faces, Array<uint32_t>& points) {
+// points' global indices, ascending. The tiles' `outliers` (ascending) are no points of the stitch's: it
+// would grow over them.
+dbrg_status gather_seam(const Array<double>& xyz, const Array<uint32_t>& mesh, const Array<uint32_t>& outliers,
+                        int axis, double wall, double spacing, Context& context, Array<uint32_t>& faces,
+                        Array<uint32_t>& points) {
     const size_t count = xyz.size() / 3, face_count = mesh.size() / 3;
     Array<uint8_t> zone(context.memory);
     DBRG_PROPAGATE(zone_points(xyz.data(), count, axis, wall, spacing, context, zone));
+    for (uint32_t v : outliers) zone[v] = FAR;
     // The corners of faces reaching into the strip join the band (marked 3: they widen nothing further).
     const uint8_t REACHED = 3;
     for (size_t f = 0; f < face_count; ++f) {
@@ -184,10 +191,10 @@ dbrg_status gather_seam(const Array<double>& xyz, const Array<uint32_t>& mesh, i
 
 // Stitches `wall` on `mesh` (global indices) through stitch_seam: appends the indices in `mesh` of the faces
 // it drops to `dropped` and the faces it adds, in global indices, to `added`.
-dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, int axis, double wall, double spacing,
-                        Context& context, Array<uint32_t>& dropped, Array<uint32_t>& added) {
+dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, const Array<uint32_t>& outliers, int axis,
+                        double wall, double spacing, Context& context, Array<uint32_t>& dropped, Array<uint32_t>& added) {
     Array<uint32_t> faces(context.memory), points(context.memory);
-    DBRG_PROPAGATE(gather_seam(xyz, mesh, axis, wall, spacing, context, faces, points));
+    DBRG_PROPAGATE(gather_seam(xyz, mesh, outliers, axis, wall, spacing, context, faces, points));
     // The gathered points and faces renumbered locally, in ascending global index as stitch_seam wants.
     Array<uint32_t> local(context.memory);
     Array<double> seam_xyz(context.memory);
@@ -222,6 +229,13 @@ dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, i
 
 } // namespace
 
+bool TileCore::contains(const double* p) const {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(p[axis] >= low[axis] && p[axis] < high[axis])) return false;
+    }
+    return true;
+}
+
 bool TileCore::owns(const double* a, const double* b, const double* c) const {
     const double* corners[3] = {a, b, c};
     std::sort(corners, corners + 3,
@@ -234,11 +248,14 @@ bool TileCore::owns(const double* a, const double* b, const double* c) const {
 }
 
 dbrg_status reconstruct_tile(const dbrg_points* points, const TileCore& core, Context& context,
-                             Array<uint32_t>& owned) {
+                             Array<uint32_t>& owned, Array<uint32_t>& outliers) {
     SurfaceResult surface(context.memory);
     DBRG_PROPAGATE(reconstruct_surface(points, context, surface));
     Array<double> xyz(context.memory);
     DBRG_PROPAGATE(copy_caller_points(points, context, xyz));
+    for (uint32_t v : surface.outliers) {
+        if (core.contains(&xyz[3 * size_t(v)]) && !outliers.push_back(v)) return context.fail_out_of_memory();
+    }
     for (size_t f = 0; f < surface.triangles.size() / 3; ++f) {
         const uint32_t* t = surface.triangles.data() + 3 * f;
         if (!core.owns(&xyz[3 * size_t(t[0])], &xyz[3 * size_t(t[1])], &xyz[3 * size_t(t[2])])) continue;
@@ -338,7 +355,8 @@ dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, 
     return DBRG_OK;
 }
 
-dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result) {
+dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Array<uint32_t>& outliers, Context& context,
+                           SurfaceResult& result) {
     DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), true, context));
     const uint32_t count = static_cast<uint32_t>(xyz.size() / 3);
     Surface surface(context.memory);
@@ -368,7 +386,11 @@ dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, Context& c
     identity.coordinates.swap(xyz);
     if (!identity.input_index.resize(count)) return context.fail_out_of_memory();
     for (uint32_t v = 0; v < count; ++v) identity.input_index[v] = v;
-    return emit_surface(surface, identity, context, result);
+    DBRG_PROPAGATE(emit_surface(surface, identity, context, result));
+    context.stats.outliers = static_cast<uint32_t>(outliers.size());
+    if (!result.outliers.reserve(outliers.size())) return context.fail_out_of_memory();
+    for (uint32_t v : outliers) result.outliers.push_back(v);
+    return DBRG_OK;
 }
 
 dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Context& context, SurfaceResult& result) {
@@ -390,11 +412,14 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     context.stats.input_points = static_cast<uint32_t>(count);
     context.stats.unique_points = static_cast<uint32_t>(count);
 
-    Array<uint32_t> mesh(context.memory);
+    Array<uint32_t> mesh(context.memory), outliers(context.memory);
     for (uint32_t k = 0; k < context.stats.tiles; ++k) {
         DBRG_PROPAGATE(context.report(DBRG_STAGE_GROW, double(k) / context.stats.tiles));
-        DBRG_PROPAGATE(run_tile(xyz, plan.axis, walls, k, HALO_SPACINGS * plan.spacing, context, mesh));
+        DBRG_PROPAGATE(run_tile(xyz, plan.axis, walls, k, HALO_SPACINGS * plan.spacing, context, mesh, outliers));
     }
+    // Every point lies in one core, so no outlier comes twice; the tiles come in order along the axis only.
+    std::sort(outliers.begin(), outliers.end());
+    context.stats.unique_points -= static_cast<uint32_t>(outliers.size());
     // The even walls, then the odd ones: walls of one half are two slabs apart, farther than a stitch
     // reaches, so each stitch of a half sees the faces as they were before the half began, as on a cluster.
     for (size_t half = 0; half < 2; ++half) {
@@ -402,7 +427,7 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
         for (size_t w = half; w < walls.size(); w += 2) {
             const double stitched = double(w / 2 + half * ((walls.size() + 1) / 2)) / walls.size();
             DBRG_PROPAGATE(context.report(DBRG_STAGE_FILL_HOLES, STITCH_PROGRESS * stitched));
-            DBRG_PROPAGATE(stitch_wall(xyz, mesh, plan.axis, walls[w], plan.spacing, context, dropped, added));
+            DBRG_PROPAGATE(stitch_wall(xyz, mesh, outliers, plan.axis, walls[w], plan.spacing, context, dropped, added));
         }
         Array<uint8_t> drop(context.memory);
         if (!drop.resize(mesh.size() / 3, 0) || !mesh.reserve(mesh.size() + added.size())) {
@@ -418,7 +443,7 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
         mesh.shrink(3 * kept);
         for (uint32_t v : added) mesh.push_back(v);
     }
-    DBRG_PROPAGATE(assemble_tiles(xyz, mesh, context, result));
+    DBRG_PROPAGATE(assemble_tiles(xyz, mesh, outliers, context, result));
     return context.memory.failed() ? context.fail_out_of_memory() : context.report(DBRG_STAGE_OUTPUT, 1.0);
 }
 

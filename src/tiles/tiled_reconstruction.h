@@ -19,6 +19,8 @@ struct TileCore {
     // Whether the centroid of the triangle with corners a, b, c lies in the core: (a + b + c) / 3 with the
     // corners summed in lexicographic order of their coordinates, so every tile computes the same number.
     bool owns(const double* a, const double* b, const double* c) const;
+    // Whether point p lies in the core: every point of the cloud lies in exactly one.
+    bool contains(const double* p) const;
 };
 
 // The halo and the seam strips, in point spacings (docs/tiles.md argues for the figures).
@@ -42,10 +44,11 @@ struct TilingPlan {
 dbrg_status plan_tiling(const double* xyz, size_t count, uint32_t tile_count, Context& context, TilingPlan& plan);
 
 // Reconstructs the surface of `points` (a tile's core and halo) and keeps the triangles the core owns
-// (TileCore::owns). Writes them to `owned`, 3 indices into `points` each. Fills context.stats as
+// (TileCore::owns). Writes them to `owned`, 3 indices into `points` each, and to `outliers` the indices of
+// the points in the core that cleaning left out as outliers, ascending. Fills context.stats as
 // reconstruct_surface does.
 dbrg_status reconstruct_tile(const dbrg_points* points, const TileCore& core, Context& context,
-                             Array<uint32_t>& owned);
+                             Array<uint32_t>& owned, Array<uint32_t>& outliers);
 
 // Stitches the seam around `wall` (docs/tiles.md, steps 2 and 3) from the `count` points `xyz` near it,
 // numbered in ascending global id, and `faces` (3 indices each, oriented as their tiles grew them): cuts the
@@ -60,9 +63,11 @@ dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, 
 
 // Puts the stitched faces (3 indices into the points `xyz` each) into one surface: oriented together,
 // taken in the orientation walk's order, a face that would break the manifold left out and counted in
-// seam_faces_dropped, pinched vertices keeping their largest fan; hands it over as the single call does.
-// Needs the whole mesh. Takes `xyz` and `mesh` over.
-dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, Context& context, SurfaceResult& result);
+// seam_faces_dropped, pinched vertices keeping their largest fan; hands it over as the single call does,
+// with `outliers` (the tiles' outliers, ascending, used by no face) as its outliers. Needs the whole mesh.
+// Takes `xyz` and `mesh` over.
+dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Array<uint32_t>& outliers,
+                           Context& context, SurfaceResult& result);
 
 // Reconstructs `points` as `tile_count` slabs (plan_tiling), one after another, then stitches the even
 // walls (the first, third, ...) and then the odd ones, each stitch on the faces as they were before its

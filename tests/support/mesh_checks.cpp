@@ -36,6 +36,9 @@ Reconstruction result_of(dbrg_status status, dbrg_mesh* mesh) {
     const uint8_t* flags = dbrg_mesh_face_flags(mesh);
     if (flags) result.face_flags.assign(flags, flags + dbrg_mesh_triangle_count(mesh));
     result.boundary_loops = dbrg_mesh_boundary_loop_count(mesh);
+    uint32_t outlier_count = 0;
+    const uint32_t* outliers = dbrg_mesh_outliers(mesh, &outlier_count);
+    if (outliers) result.outliers.assign(outliers, outliers + outlier_count);
     result.stats.struct_size = sizeof result.stats;
     dbrg_mesh_stats(mesh, &result.stats);
     if (result.status != DBRG_OK) MESSAGE(dbrg_status_string(result.status) << ": " << dbrg_mesh_message(mesh));
@@ -67,10 +70,11 @@ Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles)
 }
 
 Reconstruction assemble(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles,
-                        const dbrg_params* params) {
+                        const dbrg_params* params, const std::vector<uint32_t>& outliers) {
     const dbrg_points points = points_of(xyz);
     dbrg_mesh* mesh = nullptr;
-    const dbrg_status status = dbrg_mesh_assemble(&points, triangles.data(), triangles.size() / 3, params, &mesh);
+    const dbrg_status status = dbrg_mesh_assemble(&points, triangles.data(), triangles.size() / 3, outliers.data(),
+                                                  outliers.size(), params, &mesh);
     return result_of(status, mesh);
 }
 

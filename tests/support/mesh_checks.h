@@ -15,6 +15,7 @@ struct Reconstruction {
     std::vector<uint32_t> triangles;
     std::vector<uint8_t> face_flags;  // dbrg_mesh_face_flags, one per triangle
     uint32_t boundary_loops = 0;
+    std::vector<uint32_t> outliers;  // dbrg_mesh_outliers
     dbrg_stats stats{};
 };
 
@@ -24,9 +25,9 @@ Reconstruction reconstruct(const dbrg_points& points, const dbrg_params* params 
 // The same with dbrg_reconstruct_tiled in `tiles` slabs and the default parameters.
 Reconstruction reconstruct_tiled(const std::vector<double>& xyz, uint32_t tiles);
 
-// dbrg_mesh_assemble over the triangles (indices into xyz) with `params` (NULL: defaults).
+// dbrg_mesh_assemble over the triangles (indices into xyz) and the tiles' outliers with `params` (NULL: defaults).
 Reconstruction assemble(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles,
-                        const dbrg_params* params = nullptr);
+                        const dbrg_params* params = nullptr, const std::vector<uint32_t>& outliers = {});
 
 // `dbrg stats` figures of the triangles over the points.
 measure::MeshReport report_of(const std::vector<double>& xyz, const std::vector<uint32_t>& triangles);

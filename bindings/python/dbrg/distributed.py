@@ -123,9 +123,17 @@ def _tile_result(lib, status, handle, index_type):
     return np.ctypeslib.as_array(pointer, shape=(count, 3)).astype(index_type)
 
 
+def _ids(pointer, count, index_type):
+    """`count` uint64 ids at `pointer` as an array of `index_type`."""
+    if count == 0:
+        return np.empty(0, dtype=index_type)
+    return np.ctypeslib.as_array(pointer, shape=(count,)).astype(index_type)
+
+
 def tile_task(xyz, ids, low, high, options):
-    """A tile: dbrg_reconstruct_tile on its points (core and halo) with their global ids. Returns the
-    owned faces as an (M, 3) array of global ids, of the ids' type."""
+    """A tile: dbrg_reconstruct_tile on its points (core and halo) with their global ids. Returns (faces,
+    outliers): the owned faces as an (M, 3) array of global ids and the ids of its core's outliers, of the
+    ids' type."""
     _keep_freed_blocks()
     lib = library()
     xyz, view = _view(xyz)
@@ -136,7 +144,10 @@ def tile_task(xyz, ids, low, high, options):
     status = lib.dbrg_reconstruct_tile(ctypes.byref(view), ids.ctypes.data_as(_capi.u64_p), core_low, core_high,
                                        ctypes.byref(params), ctypes.byref(handle))
     try:
-        return _tile_result(lib, status, handle, index_type)
+        faces = _tile_result(lib, status, handle, index_type)
+        count = ctypes.c_uint64()
+        pointer = lib.dbrg_tile_mesh_outliers(handle, ctypes.byref(count))
+        return faces, _ids(pointer, count.value, index_type)
     finally:
         lib.dbrg_tile_mesh_destroy(handle)
 
@@ -163,17 +174,15 @@ def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
         added = _tile_result(lib, status, handle, index_type)
         count = ctypes.c_uint64()
         pointer = lib.dbrg_tile_mesh_dropped(handle, ctypes.byref(count))
-        dropped = np.ctypeslib.as_array(pointer, shape=(count.value,)).astype(np.int64) if count.value else \
-            np.empty(0, dtype=np.int64)
-        return dropped, added
+        return _ids(pointer, count.value, np.int64), added
     finally:
         lib.dbrg_tile_mesh_destroy(handle)
 
 
 def _seam_inputs(coordinate, faces, walls, reach):
     """What each stitch of a half is sent, as dbrg_seam_stitch asks: the points within `reach` of its wall
-    (`coordinate`: the points' coordinates on the plan's axis), the faces touching them or sharing a corner
-    with such a face, and those faces' corners. Yields (indices of the faces in `faces`, ids of the points,
+    (`coordinate`: the points' coordinates on the plan's axis, NaN for the outliers, which no stitch is
+    given), the faces touching them or sharing a corner with such a face, and those faces' corners. Yields (indices of the faces in `faces`, ids of the points,
     ascending) for each wall in turn, so that its stitch can start while the next wall's input is found.
 
     Two passes over all the faces serve the whole half: every face a stitch is sent has a corner near one of
@@ -245,7 +254,8 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
     progress: show Dask's progress bar for the tiles and for each half of the stitches.
     options: the surface parameters of dbrg.reconstruct (sliver_angle, boundary_factor, boundary_mean,
         fill_holes, max_hole_edges, max_components, backend, cleaning); every task uses one thread.
-    Mesh.stats holds the assembly's figures, with `tiles` the number of slabs run. Raises ImportError when
+    Mesh.stats holds the assembly's figures, with `tiles` the number of slabs run; Mesh.outliers the points
+    the tiles left out as outliers, each decided by the tile whose core holds it. Raises ImportError when
     distributed cannot be imported, and dbrg.Error subclasses as dbrg.reconstruct does.
     """
     unknown = set(options) - set(_OPTIONS)
@@ -273,17 +283,18 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
             # Dask advises scattering large task arguments; here they are sent in the tasks on purpose, so
             # that a task outlives the worker it ran on (module docstring).
             warnings.filterwarnings("ignore", message="Large object of size", category=UserWarning)
-            faces = _tiles(client, array, cut, options, progress)
+            faces, outliers = _tiles(client, array, cut, options, progress)
             for half in (0, 1):
-                faces = _stitch_half(client, array, faces, cut, cut.walls[half::2], options, progress)
+                faces = _stitch_half(client, array, faces, outliers, cut, cut.walls[half::2], options, progress)
     finally:
         for thing in opened:
             thing.close()
-    return _assemble(lib, points, array, faces, len(cut.walls) + 1)
+    return _assemble(lib, points, array, faces, outliers, len(cut.walls) + 1)
 
 
 def _tiles(client, array, cut, options, progress):
-    """Every tile's owned faces, concatenated in tile order: an (F, 3) array of point indices (_index_type).
+    """Every tile's owned faces, concatenated in tile order: an (F, 3) array of point indices (_index_type),
+    and the tiles' outliers, ascending (each point lies in one core: none comes twice).
     Each tile is sent as soon as its points are cut, so the first tiles run while the next are cut. (Tasks
     are submitted as impure: their keys are not hashed from their arguments, megabytes of points.)"""
     coordinate = array[:, cut.axis]
@@ -294,14 +305,17 @@ def _tiles(client, array, cut, options, progress):
         inside = np.flatnonzero((coordinate >= low[cut.axis] - cut.halo) & (coordinate < high[cut.axis] + cut.halo))
         futures.append(client.submit(tile_task, array[inside], inside.astype(index_type), low, high, options,
                                      pure=False))
-    return np.concatenate(_wait(client, futures, progress))
+    results = _wait(client, futures, progress)
+    return np.concatenate([faces for faces, _ in results]), np.sort(np.concatenate([ids for _, ids in results]))
 
 
-def _stitch_half(client, array, faces, cut, walls, options, progress):
+def _stitch_half(client, array, faces, outliers, cut, walls, options, progress):
     """The faces after stitching `walls` (a half: two slabs apart, so their stitches touch disjoint faces),
     each stitch on `faces` as they are."""
     futures, given_faces = [], []
-    inputs = _seam_inputs(array[:, cut.axis], faces, walls, cut.seam_reach)
+    coordinate = array[:, cut.axis].copy()
+    coordinate[outliers] = np.nan
+    inputs = _seam_inputs(coordinate, faces, walls, cut.seam_reach)
     for wall, (given, ids) in zip(walls, inputs):
         given_faces.append(given)
         futures.append(client.submit(stitch_task, array[ids], ids.astype(faces.dtype), faces[given], cut.axis,
@@ -315,13 +329,15 @@ def _stitch_half(client, array, faces, cut, walls, options, progress):
     return np.concatenate([faces[keep]] + added)
 
 
-def _assemble(lib, points, array, faces, tiles):
-    """dbrg_mesh_assemble on the whole cloud and the stitched faces: the dbrg.Mesh."""
+def _assemble(lib, points, array, faces, outliers, tiles):
+    """dbrg_mesh_assemble on the whole cloud, the stitched faces and the tiles' outliers: the dbrg.Mesh."""
     xyz, view = _view(array)
     triangles = np.ascontiguousarray(faces, dtype=np.uint32)
+    left_out = np.ascontiguousarray(outliers, dtype=np.uint32)
     handle = _capi.mesh_p()
     status = lib.dbrg_mesh_assemble(ctypes.byref(view), triangles.ctypes.data_as(_capi.u32_p), len(triangles),
-                                    None, ctypes.byref(handle))
+                                    left_out.ctypes.data_as(_capi.u32_p), len(left_out), None,
+                                    ctypes.byref(handle))
     try:
         if status != _OK:
             raise _error(lib, status, lib.dbrg_mesh_message(handle) if handle else b"")

@@ -156,6 +156,19 @@ class Distributed(unittest.TestCase):
         self.assertEqual(mesh.stats["tiles"], TILES)
         self.assertEqual(mesh.stats["seam_faces_dropped"], self.reference.stats["seam_faces_dropped"])
 
+    def test_the_outliers_of_the_c_loop(self):
+        # Points far above and below the torus (20 spacings and more): each tile lists those of its core, the
+        # assembly gets them, and no stitch grows over them.
+        grid = np.array([(x, y, z) for x in (-1.0, 0.0, 1.0) for y in (-1.0, 0.0, 1.0) for z in (-1.2, 1.2)])
+        points = np.concatenate([self.points, grid])
+        reference = c_loop(points, TILES)
+        mesh = dbrg_distributed.reconstruct(points, tiles=TILES, client=self.client, progress=False)
+        self.assertEqual(reference.outliers.tolist(), list(range(len(self.points), len(points))))
+        self.assertTrue(np.array_equal(mesh.outliers, reference.outliers))
+        self.assertEqual(mesh.stats["outliers"], len(grid))
+        self.assertTrue(np.array_equal(mesh.triangles, reference.triangles))
+        self.assertFalse(np.isin(mesh.triangles, mesh.outliers).any())
+
     def test_a_bad_parameter_fails_before_any_task(self):
         with self.assertRaises(dbrg.InvalidParameterError) as raised:
             dbrg_distributed.reconstruct(self.points, tiles=TILES, client=self.client, progress=False,

@@ -261,6 +261,8 @@ extern "C" {
         points: *const dbrg_points,
         triangles: *const u32,
         triangle_count: usize,
+        outliers: *const u32,
+        outlier_count: usize,
         params: *const dbrg_params,
         out_mesh: *mut *mut dbrg_mesh,
     ) -> dbrg_status;
@@ -270,6 +272,7 @@ extern "C" {
     pub fn dbrg_tile_mesh_triangle_count(mesh: *const dbrg_tile_mesh) -> u64;
     pub fn dbrg_tile_mesh_triangles(mesh: *const dbrg_tile_mesh) -> *const u64;
     pub fn dbrg_tile_mesh_dropped(mesh: *const dbrg_tile_mesh, out_count: *mut u64) -> *const u64;
+    pub fn dbrg_tile_mesh_outliers(mesh: *const dbrg_tile_mesh, out_count: *mut u64) -> *const u64;
     pub fn dbrg_tile_mesh_stats(mesh: *const dbrg_tile_mesh, stats: *mut dbrg_stats) -> dbrg_status;
 
     pub fn dbrg_tetrahedralize(
