@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -216,6 +217,10 @@ TEST_CASE("outliers: a few stray points far from the surface are left out and li
                                                     << test::longest_edge(xyz, result.triangles) /
                                                            test::median_edge(xyz, result.triangles));
         CHECK(report.components == 1);
+        // No spike to a stray point, left out or not: growing refuses triangles that large, and so does the
+        // first seed since it passes the open-surface test (the longest edge was 4.4 and 2.8 times the
+        // median, with cleaning and without, when a stray point above the torus seeded it).
+        CHECK(test::longest_edge(xyz, result.triangles) < 3 * test::median_edge(xyz, result.triangles));
         if (cleaning == DBRG_CLEANING_OFF) continue;
         // Every stray point far from the torus (its tube has radius 0.35 about a circle of radius 1; the
         // spacing is about 0.06) is listed as an outlier, and no triangle touches a listed point.
@@ -236,10 +241,42 @@ TEST_CASE("outliers: a few stray points far from the surface are left out and li
         CHECK(std::is_sorted(listed.begin(), listed.end()));
         for (uint32_t corner : result.triangles) CHECK(std::find(listed.begin(), listed.end(), corner) == listed.end());
         CHECK(result.stats.outliers == count);
-        // No spike: without cleaning the longest edge is 27 times the median, reaching a stray point.
-        CHECK(test::longest_edge(xyz, result.triangles) < 6 * test::median_edge(xyz, result.triangles));
         dbrg_mesh_destroy(mesh);
     }
+}
+
+TEST_CASE("stray points above a surface do not seed it: the first seed passes the open-surface test") {
+    // Growing starts at the highest point (§3.1.1). A stray point there, left in (cleaning off, or one the
+    // outlier rules keep), seeded the surface with a huge triangle, and the mean circumradius r_a it started
+    // from let growing reach across empty space: a spike to the stray point.
+    const std::vector<double> sphere = samples::sample(samples::Shape::sphere, 4000);
+    std::vector<double> xyz = sphere;
+    const size_t n = sphere.size() / 3;
+    xyz.insert(xyz.end(), {0.3, 0.2, 4.0, 2.5, 0.1, 3.0, -2.0, 1.5, 2.5});
+    dbrg_params params;
+    dbrg_params_init(&params);
+    params.cleaning = DBRG_CLEANING_OFF;
+    const test::Reconstruction alone = test::reconstruct(sphere, &params);
+    const test::Reconstruction with_strays = test::reconstruct(xyz, &params);
+    REQUIRE(alone.status == DBRG_OK);
+    REQUIRE(with_strays.status == DBRG_OK);
+    CHECK(std::count_if(with_strays.triangles.begin(), with_strays.triangles.end(), [&](uint32_t v) { return v >= n; }) == 0);
+    const measure::MeshReport report = test::report_of(xyz, with_strays.triangles);
+    test::require_valid_manifold(report);
+    CHECK(report.edges_boundary == 0);
+    CHECK(test::longest_edge(xyz, with_strays.triangles) < 6 * test::median_edge(xyz, with_strays.triangles));
+    // The same seed as without them, so the same surface.
+    std::vector<std::array<uint32_t, 3>> faces[2];
+    for (int k = 0; k < 2; ++k) {
+        const std::vector<uint32_t>& t = k == 0 ? alone.triangles : with_strays.triangles;
+        for (size_t f = 0; f < t.size(); f += 3) {
+            std::array<uint32_t, 3> face{t[f], t[f + 1], t[f + 2]};
+            std::sort(face.begin(), face.end());
+            faces[k].push_back(face);
+        }
+        std::sort(faces[k].begin(), faces[k].end());
+    }
+    CHECK(faces[0] == faces[1]);
 }
 
 TEST_CASE("near-duplicates: a sphere sampled twice, each copy 1e-9 off, comes out closed like the sphere") {

@@ -77,7 +77,9 @@ private:
     dbrg_status grow_component(const ProgressSpan& progress);
     dbrg_status drain_queue(const ProgressSpan& progress);
     dbrg_status report_grown(const ProgressSpan& progress) const;
+    double smallest_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
     bool find_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const;
+    bool measure_typical_seed();
     uint32_t tet_with_face(uint32_t a, uint32_t b, uint32_t c) const;
     bool select_candidate(uint32_t halfedge, const CandidateRank* after, Candidate& out) const;
     CandidateVerdict examine(const Candidate& candidate, double& smoothness, FaceCheck& check) const;
@@ -108,6 +110,7 @@ private:
     StepObserver observer_ = nullptr;
     void* observer_user_ = nullptr;
     double radius_sum_ = 0;          // over the faces of S, for the global mean r_a
+    double typical_seed_ = HUGE_VAL; // r_a before S has faces: the median seed radius of a sample of points
     // What examine answered for the last candidates proposed, and S's edit count then. About half of the
     // candidates taken from the queue were proposed for the face added just before, with S as it is.
     struct Examined {
