@@ -161,31 +161,22 @@ dbrg_status local_indices(const uint64_t* ids, size_t count, const uint64_t* wan
     return DBRG_OK;
 }
 
-// dbrg_mesh_assemble's outliers, checked against its `count` points and its triangles (`mesh`): sorted,
-// each once, into `left_out`.
-dbrg_status read_outliers(const uint32_t* outliers, size_t outlier_count, const Array<uint32_t>& mesh, size_t count,
-                          Context& context, Array<uint32_t>& left_out) {
+// dbrg_mesh_assemble's outliers, checked against its `count` points: sorted, each once, into `left_out`.
+dbrg_status read_outliers(const uint32_t* outliers, size_t outlier_count, size_t count, Context& context,
+                          Array<uint32_t>& left_out) {
     if (outlier_count > 0 && !outliers) {
         return context.fail(DBRG_ERR_INVALID_ARGUMENT, "outliers is NULL with an outlier_count of %zu", outlier_count);
     }
-    Array<uint8_t> is_outlier(context.memory);
-    if (!is_outlier.resize(outlier_count > 0 ? count : 0, 0) || !left_out.reserve(outlier_count)) {
-        return context.fail_out_of_memory();
-    }
+    if (!left_out.reserve(outlier_count)) return context.fail_out_of_memory();
     for (size_t i = 0; i < outlier_count; ++i) {
         if (outliers[i] >= count) {
             return context.fail(DBRG_ERR_INVALID_ARGUMENT, "outlier %zu is the index %u, past the %zu points", i,
                                 outliers[i], count);
         }
-        if (!is_outlier[outliers[i]]) left_out.push_back(outliers[i]);
-        is_outlier[outliers[i]] = 1;
-    }
-    for (size_t i = 0; outlier_count > 0 && i < mesh.size(); ++i) {
-        if (is_outlier[mesh[i]]) {
-            return context.fail(DBRG_ERR_INVALID_ARGUMENT, "triangle %zu uses the outlier %u", i / 3, mesh[i]);
-        }
+        left_out.push_back(outliers[i]);
     }
     std::sort(left_out.begin(), left_out.end());
+    left_out.shrink(static_cast<size_t>(std::unique(left_out.begin(), left_out.end()) - left_out.begin()));
     return DBRG_OK;
 }
 
@@ -457,6 +448,7 @@ DBRG_API dbrg_status dbrg_reconstruct_tile(const dbrg_points* points, const uint
         DBRG_PROPAGATE(reconstruct_tile(points, core, context, triangles, outliers));
         if (!mesh.outliers.reserve(outliers.size())) return context.fail_out_of_memory();
         for (uint32_t v : outliers) mesh.outliers.push_back(point_ids[v]);
+        std::sort(mesh.outliers.begin(), mesh.outliers.end());  // the ids need not ascend with the points
         return DBRG_OK;
     });
 }
@@ -565,9 +557,9 @@ DBRG_API dbrg_status dbrg_mesh_assemble(const dbrg_points* points, const uint32_
             }
         }
         Array<uint32_t> left_out(context.memory);
-        DBRG_PROPAGATE(read_outliers(outliers, outlier_count, mesh, points->count, context, left_out));
+        DBRG_PROPAGATE(read_outliers(outliers, outlier_count, points->count, context, left_out));
         context.stats.input_points = static_cast<uint32_t>(points->count);
-        context.stats.unique_points = static_cast<uint32_t>(points->count - left_out.size());
+        context.stats.unique_points = static_cast<uint32_t>(points->count);
         return assemble_tiles(xyz, mesh, left_out, context, surface);
     });
 }

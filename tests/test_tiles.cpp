@@ -59,7 +59,7 @@ std::vector<double> with_isolated_outliers(std::vector<double> xyz, size_t wante
         low[i % 3] = std::min(low[i % 3], xyz[i]);
         high[i % 3] = std::max(high[i % 3], xyz[i]);
     }
-    // The median distance from a point to the next one in the sample's order is about the spacing.
+    // The spacing: the median distance from a point to its nearest neighbour, over every 97th point.
     std::vector<double> steps;
     for (size_t i = 1; i < surface; i += 97) {
         double d = HUGE_VAL;
@@ -94,7 +94,7 @@ std::vector<double> with_isolated_outliers(std::vector<double> xyz, size_t wante
 
 } // namespace
 
-TEST_CASE("tiles list their cores' outliers, which no stitch grows over, as the single call lists them") {
+TEST_CASE("tiles list their cores' outliers as the single call lists them, and no face uses one") {
     std::vector<uint32_t> planted;
     const std::vector<double> xyz = with_isolated_outliers(samples::sample(samples::Shape::torus, 20000), 40, planted);
     REQUIRE(planted.size() >= 20);
@@ -465,12 +465,15 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
     const dbrg_tiling& tiling = steps.tiling;
     walls.resize(tiling.wall_count);
     const uint32_t axis = tiling.axis;
-    // The tiles' outliers, which no stitch is handed.
+    // The tiles' outliers, which a stitch is handed only as corners of its faces.
     std::set<uint64_t> outliers;
-    // Points with their coordinate on the axis in [low, high), as a tile or a stitch is handed them.
-    const auto points_between = [&](double low, double high, std::vector<double>& part, std::vector<uint64_t>& ids) {
+    // Points with their coordinate on the axis in [low, high), as a tile or (without outliers) a stitch is
+    // handed them.
+    const auto points_between = [&](double low, double high, bool with_outliers, std::vector<double>& part,
+                                    std::vector<uint64_t>& ids) {
         for (size_t i = 0; i < count; ++i) {
-            if (xyz[3 * i + axis] < low || xyz[3 * i + axis] >= high || outliers.count(base + i)) continue;
+            if (xyz[3 * i + axis] < low || xyz[3 * i + axis] >= high) continue;
+            if (!with_outliers && outliers.count(base + i)) continue;
             part.insert(part.end(), xyz.begin() + 3 * i, xyz.begin() + 3 * i + 3);
             ids.push_back(base + i);
         }
@@ -482,7 +485,7 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
         if (k < walls.size()) high[axis] = walls[k];
         std::vector<double> part;
         std::vector<uint64_t> ids;
-        points_between(low[axis] - tiling.halo, high[axis] + tiling.halo, part, ids);
+        points_between(low[axis] - tiling.halo, high[axis] + tiling.halo, true, part, ids);
         const dbrg_points points = points_of(part);
         dbrg_tile_mesh* tile = nullptr;
         REQUIRE(dbrg_reconstruct_tile(&points, ids.data(), low, high, nullptr, &tile) == DBRG_OK);
@@ -505,7 +508,7 @@ Steps run_steps(const std::vector<double>& xyz, uint32_t tiles, WallOrder order,
             const double reach = (generous ? 2 : 1) * tiling.seam_reach;
             std::vector<double> part;
             std::vector<uint64_t> ids;
-            points_between(walls[w] - reach, walls[w] + reach, part, ids);
+            points_between(walls[w] - reach, walls[w] + reach, false, part, ids);
             std::set<uint64_t> near(ids.begin(), ids.end()), corners = near;
             for (int ring = 0; ring < 2; ++ring) {
                 std::set<uint64_t> next = corners;
@@ -701,8 +704,12 @@ TEST_CASE("the tiling steps check their arguments") {
     CHECK(std::string(dbrg_mesh_message(mesh)) ==
           "outlier 0 is the index " + std::to_string(ids.size()) + ", past the " + std::to_string(ids.size()) + " points");
     dbrg_mesh_destroy(mesh);
-    CHECK(dbrg_mesh_assemble(&points, triangle, 1, outlier_used, 2, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
-    CHECK(std::string(dbrg_mesh_message(mesh)) == "triangle 0 uses the outlier 1");
+    // An outlier a face uses (a neighbouring tile kept it and joined it) is no outlier of the mesh.
+    REQUIRE(dbrg_mesh_assemble(&points, triangle, 1, outlier_used, 2, nullptr, &mesh) == DBRG_OK);
+    uint32_t used_count = 0;
+    const uint32_t* not_used = dbrg_mesh_outliers(mesh, &used_count);
+    REQUIRE(used_count == 1);
+    CHECK(not_used[0] == 7);
     dbrg_mesh_destroy(mesh);
     CHECK(dbrg_mesh_assemble(&points, triangle, 1, nullptr, 2, nullptr, &mesh) == DBRG_ERR_INVALID_ARGUMENT);
     dbrg_mesh_destroy(mesh);

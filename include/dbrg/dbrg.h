@@ -452,7 +452,8 @@ typedef struct dbrg_tile_mesh dbrg_tile_mesh;
  * Every tile computes the same centroid for a triangle and half-open cores partition space, so no
  * triangle has two owners.
  * The points of the core that cleaning leaves out as outliers are listed too (dbrg_tile_mesh_outliers):
- * every point lies in one core, so the tiles list each outlier once; a stitch must not be given them.
+ * every point lies in one core, so the tiles list each outlier once; a stitch is given them only as corners
+ * of the faces it is given (another tile may have kept one).
  * Returns DBRG_OK or the status of the first problem, as dbrg_reconstruct.
  * points: the tile's points; read during the call only.
  * point_ids: points->count global ids, distinct; read during the call only.
@@ -550,9 +551,10 @@ DBRG_API dbrg_status dbrg_seam_stitch(const dbrg_points* points, const uint64_t*
  * the surface over as dbrg_reconstruct does (boundary loops, statistics). Depends on the
  * set of faces, not their order or orientation. A whole-mesh step: it holds all points and faces, with
  * 32-bit indices.
- * The tiles' outliers become the mesh's (dbrg_mesh_outliers, stats.outliers), as in dbrg_reconstruct.
+ * The tiles' outliers that no face uses (a neighbouring tile may have kept and joined a point of another's
+ * core) become the mesh's (dbrg_mesh_outliers, stats.outliers), as in dbrg_reconstruct.
  * Returns DBRG_OK, DBRG_ERR_INVALID_ARGUMENT (NULL triangles or outliers with a count, an index past the
- * points, a triangle repeating a corner or using an outlier), or the status of dbrg_reconstruct for bad points.
+ * points, a triangle repeating a corner), or the status of dbrg_reconstruct for bad points.
  * points: the whole cloud; read during the call only.
  * triangles: 3 * triangle_count indices into `points`. May be NULL when triangle_count is 0.
  * outliers: outlier_count indices into `points`, in any order (the tiles' dbrg_tile_mesh_outliers). May be

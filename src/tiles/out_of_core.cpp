@@ -276,7 +276,7 @@ private:
             if (status) status = read_records(faces(uint32_t(w) + side), sides[side]);
             if (!status) return status;
             for (const PointRecord& point : points) {
-                if (std::fabs(point.xyz[axis] - wall) < window && !outliers_.count(point.id)) near.add(point);
+                if (std::fabs(point.xyz[axis] - wall) < window) near.add(point);
             }
         }
         // A face's distance to the wall: its nearest corner's; HUGE_VAL when a corner is beyond the window.
@@ -314,7 +314,8 @@ private:
         std::vector<uint64_t> ids;
         std::vector<double> xyz;
         for (const auto& [id, i] : near.index) {
-            if (std::fabs(near.xyz[i][axis] - wall) < reach || corners.count(id)) ids.push_back(id);
+            const bool within = std::fabs(near.xyz[i][axis] - wall) < reach && !outliers_.count(id);
+            if (within || corners.count(id)) ids.push_back(id);
         }
         std::sort(ids.begin(), ids.end());
         for (uint64_t id : ids) xyz.insert(xyz.end(), near.find(id), near.find(id) + 3);
@@ -570,7 +571,7 @@ private:
     io::PointReader reader_;
     CloudSummary summary_;
     double spacing_ = 0;
-    std::unordered_set<uint64_t> outliers_;  // the slabs' outliers, which no stitch is given
+    std::unordered_set<uint64_t> outliers_;  // the slabs' outliers: a stitch gets them only as faces' corners
     std::vector<double> walls_;
     uint32_t tiles_ = 1;
     TempFolder folder_;

@@ -387,9 +387,16 @@ dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Arra
     if (!identity.input_index.resize(count)) return context.fail_out_of_memory();
     for (uint32_t v = 0; v < count; ++v) identity.input_index[v] = v;
     DBRG_PROPAGATE(emit_surface(surface, identity, context, result));
-    context.stats.outliers = static_cast<uint32_t>(outliers.size());
-    if (!result.outliers.reserve(outliers.size())) return context.fail_out_of_memory();
-    for (uint32_t v : outliers) result.outliers.push_back(v);
+    // Each tile judges the points of its core, from its own points; a neighbouring tile that kept such a
+    // point may have joined it to a face it owns, and then it is no outlier of the mesh.
+    Array<uint8_t> used(context.memory);
+    if (!used.resize(count, 0) || !result.outliers.reserve(outliers.size())) return context.fail_out_of_memory();
+    for (uint32_t v : result.triangles) used[v] = 1;
+    for (uint32_t v : outliers) {
+        if (!used[v]) result.outliers.push_back(v);
+    }
+    context.stats.outliers = static_cast<uint32_t>(result.outliers.size());
+    context.stats.unique_points -= context.stats.outliers;
     return DBRG_OK;
 }
 
@@ -419,7 +426,6 @@ dbrg_status reconstruct_tiled(const dbrg_points* points, uint32_t tile_count, Co
     }
     // Every point lies in one core, so no outlier comes twice; the tiles come in order along the axis only.
     std::sort(outliers.begin(), outliers.end());
-    context.stats.unique_points -= static_cast<uint32_t>(outliers.size());
     // The even walls, then the odd ones: walls of one half are two slabs apart, farther than a stitch
     // reaches, so each stitch of a half sees the faces as they were before the half began, as on a cluster.
     for (size_t half = 0; half < 2; ++half) {

@@ -64,7 +64,8 @@ dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, 
 // Puts the stitched faces (3 indices into the points `xyz` each) into one surface: oriented together,
 // taken in the orientation walk's order, a face that would break the manifold left out and counted in
 // seam_faces_dropped, pinched vertices keeping their largest fan; hands it over as the single call does,
-// with `outliers` (the tiles' outliers, ascending, used by no face) as its outliers. Needs the whole mesh.
+// with those of `outliers` (the tiles' outliers, ascending) that no face uses as its outliers, and
+// context.stats.unique_points less their number. Needs the whole mesh.
 // Takes `xyz` and `mesh` over.
 dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Array<uint32_t>& outliers,
                            Context& context, SurfaceResult& result);

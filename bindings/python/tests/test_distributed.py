@@ -101,10 +101,12 @@ class KillOnFirstTile(WorkerPlugin):
             os._exit(1)
 
 
-def seam_input_by_definition(xyz, faces, axis, wall, reach):
+def seam_input_by_definition(xyz, faces, axis, wall, reach, outliers=()):
     """What dbrg_seam_stitch asks to be sent for `wall`, read off its contract one wall at a time: the points
-    within `reach`, the faces touching them or sharing a corner with such a face, and those faces' corners."""
+    within `reach` but the tiles' outliers, the faces touching them or sharing a corner with such a face, and
+    those faces' corners."""
     near = np.abs(xyz[:, axis] - wall) < reach
+    near[list(outliers)] = False
     marked = near.copy()
     marked[faces[near[faces].any(axis=1)]] = True
     given = np.flatnonzero(marked[faces].any(axis=1))
@@ -123,13 +125,21 @@ class SeamInputs(unittest.TestCase):
         rng = np.random.default_rng(2)
         faces = np.concatenate([c_loop(points, TILES).triangles,
                                 rng.integers(0, len(points), size=(300, 3))]).astype(np.uint32)
+        # Outliers (their coordinate NaN, as the driver marks them) near the walls, some of them corners of
+        # the random faces: those are sent as corners, the others not at all.
+        coordinate = points[:, cut.axis].copy()
+        near_a_wall = np.flatnonzero(np.min(np.abs(coordinate[:, None] - np.array(cut.walls)), axis=1) < cut.seam_reach)
+        outliers = near_a_wall[::7]
+        coordinate[outliers] = np.nan
         for walls in (cut.walls[0::2], cut.walls[1::2]):
-            found = list(dbrg_distributed._seam_inputs(points[:, cut.axis], faces, walls, cut.seam_reach))
+            found = list(dbrg_distributed._seam_inputs(coordinate, faces, walls, cut.seam_reach))
             self.assertEqual(len(found), len(walls))
             for wall, (given, ids) in zip(walls, found):
-                expected_given, expected_ids = seam_input_by_definition(points, faces, cut.axis, wall, cut.seam_reach)
+                expected_given, expected_ids = seam_input_by_definition(points, faces, cut.axis, wall, cut.seam_reach,
+                                                                        outliers)
                 self.assertTrue(np.array_equal(given, expected_given))
                 self.assertTrue(np.array_equal(ids, expected_ids))
+                self.assertFalse(np.isin(np.setdiff1d(outliers, faces[given]), ids).any())
 
 
 @unittest.skipIf(distributed is None, MISSING if distributed is None else "")
