@@ -195,10 +195,11 @@ dbrg_status RegionGrower::try_seed(uint32_t v, Array<uint32_t>& removed, const P
 }
 
 // The smallest-circumradius Delaunay triangle at `vertex` whose corners are all unused (so it starts a
-// component of its own), and its circumradius; HUGE_VAL when there is none.
+// component of its own), and its circumradius; HUGE_VAL when there is none (also for a vertex in no
+// tetrahedron, which a backend may leave).
 double RegionGrower::smallest_seed(uint32_t vertex, uint32_t corners[3], uint32_t& tet) const {
     Array<uint32_t> star(context_.memory);
-    if (!delaunay_.tets_around_vertex(vertex, star)) return HUGE_VAL;
+    if (delaunay_.vertex_tet(vertex) == NO_TET || !delaunay_.tets_around_vertex(vertex, star)) return HUGE_VAL;
     double best = HUGE_VAL;
     for (uint32_t t : star) {
         if (!delaunay_.tet_is_finite(t)) continue;
