@@ -50,7 +50,7 @@ std::vector<std::array<uint32_t, 3>> oriented_faces(const std::vector<uint32_t>&
 
 // `xyz` with up to `wanted` points added in the box around it, each farther than 20 median spacings from
 // every point before it (surface or added): outliers whatever their neighbourhood, in one process or in a
-// tile. `added` receives their indices, ascending.
+// tile, as their nearest neighbours are points of the surface. `added` receives their indices, ascending.
 std::vector<double> with_isolated_outliers(std::vector<double> xyz, size_t wanted, std::vector<uint32_t>& added) {
     const size_t surface = xyz.size() / 3;
     double low[3], high[3];
@@ -589,7 +589,7 @@ TEST_CASE("the tiling steps run by hand give dbrg_reconstruct_tiled's faces, wha
     }
     // With outliers the tiles leave out: the steps hand them to the assembly and to no stitch.
     std::vector<uint32_t> planted;
-    const std::vector<double> xyz = with_isolated_outliers(samples::sample(samples::Shape::double_torus, 20000), 40, planted);
+    const std::vector<double> xyz = with_isolated_outliers(samples::sample(samples::Shape::double_torus, 10000), 40, planted);
     const test::Reconstruction whole = test::reconstruct_tiled(xyz, 5);
     REQUIRE(whole.status == DBRG_OK);
     CHECK(!whole.outliers.empty());
