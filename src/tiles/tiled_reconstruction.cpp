@@ -158,8 +158,8 @@ dbrg_status zone_points(const double* xyz, size_t count, int axis, double wall, 
 // The faces of `mesh` (3 global indices each) a stitch of `wall` needs, and the points they and the wall
 // need, as the stitch_seam contract says: the faces with a corner within reach of the wall or sharing a
 // corner with a face that has one in the strip. `faces` receives their indices in `mesh`, `points` the
-// points' global indices, ascending. The tiles' `outliers` (ascending) are no points of the stitch's: it
-// would grow over them.
+// points' global indices, ascending. The tiles' `outliers` join only as corners of those faces (a tile that
+// kept one may have used it), never for being near the wall: the stitch would grow over them.
 dbrg_status gather_seam(const Array<double>& xyz, const Array<uint32_t>& mesh, const Array<uint32_t>& outliers,
                         int axis, double wall, double spacing, Context& context, Array<uint32_t>& faces,
                         Array<uint32_t>& points) {
