@@ -61,6 +61,9 @@ dbrg_status HoleFiller::fill_with_ears(const ProgressSpan& ears, const ProgressS
         const bool border_like = count_open_edges(loop) > 0 && loop.size() > SHORT_LOOP_EDGES && !is_narrow(loop);
         bool filled = false;
         DBRG_PROPAGATE(fill_within_fold_limits(u, v, border_like ? 0 : MAX_ENLARGEMENTS, journal, filled));
+        if (!filled && loop.size() <= MAX_CORNER_DROPPING_EDGES) {
+            DBRG_PROPAGATE(fill_without_a_corner(u, v, static_cast<uint32_t>(loop.size()), journal, filled));
+        }
         if (!filled) continue;
         stats.hole_triangles_added += journal.added_count();
         stats.hole_triangles_removed += journal.removed_count();
@@ -198,6 +201,52 @@ dbrg_status HoleFiller::fill_hole(uint32_t start, uint32_t enlargements, FaceJou
         if (!sub_filled) return DBRG_OK;
     }
     filled = true;
+    return DBRG_OK;
+}
+
+// A small hole whose every ear folds, with a corner of few faces: growing pulled that corner across the
+// hole (a pleat of one vertex), so its fan and the hole together form one disk around it. Removing the
+// corner's faces leaves a hole over the disk's rim, which ears can fill; the corner is left out
+// (PointInsertion may put it back where it lies). Enlarging cannot close such a hole next to a border: the
+// enlarged hole runs into the border and is no hole any more.
+dbrg_status HoleFiller::fill_without_a_corner(uint32_t u, uint32_t v, uint32_t edges, FaceJournal& journal, bool& filled) {
+    filled = false;
+    cos_fold_limit_ = cos(context_.params.sliver_angle);
+    Array<uint32_t> fan(context_.memory), rim(context_.memory), corners(context_.memory);
+    for (uint32_t k = 0; k < edges; ++k) {
+        // An undone attempt gives the faces new ids: find the loop again by its edge each time.
+        uint32_t out = surface_.find_halfedge(u, v);
+        if (out == NO_HALFEDGE || !surface_.is_boundary(out)) return DBRG_OK;
+        for (uint32_t i = 0; i < k; ++i) out = surface_.fan_exit(out);
+        const uint32_t corner = surface_.origin(out);
+        if ((fixed_ && fixed_[corner]) || surface_.is_pinched(corner) || surface_.fan_size(out) > MAX_DROPPED_FAN) continue;
+        // The loop runs previous -> corner -> next; the fan's faces, turning from `out`, are (corner, next,
+        // rim 1), (corner, rim 1, rim 2), ..., (corner, rim k - 1, previous). Without them the hole runs
+        // from next along the rest of the loop to previous, then back along the rim.
+        corners.clear();
+        surface_.walk_loop(out, [&](uint32_t h) {
+            return corners.size() <= context_.params.max_hole_edges && corners.push_back(surface_.target(h));
+        });
+        if (corners.empty() || corners.back() != corner) continue;  // longer than any hole
+        corners.pop_back();
+        fan.clear();
+        rim.clear();
+        surface_.walk_fan(out, [&](uint32_t h) { fan.push_back(Surface::face_of(h)) && rim.push_back(surface_.target(Surface::next(h))); });
+        if (context_.memory.failed()) return context_.fail_out_of_memory();
+        rim.pop_back();  // previous, already in the loop
+        // A rim through the loop's own corners is no disk around the corner alone.
+        const bool disk = std::none_of(rim.begin(), rim.end(), [&](uint32_t w) {
+            return std::find(corners.begin(), corners.end(), w) != corners.end();
+        });
+        if (!disk || corners.size() + rim.size() < 3) continue;
+        for (size_t i = rim.size(); i-- > 0;) corners.push_back(rim[i]);
+        if (context_.memory.failed()) return context_.fail_out_of_memory();
+        const size_t position = journal.size();
+        for (uint32_t f : fan) DBRG_PROPAGATE(remove_and_record(f, journal));
+        DBRG_PROPAGATE(clip_ears(corners, journal, filled));
+        if (filled) return DBRG_OK;
+        DBRG_PROPAGATE(undo(journal, position));
+    }
     return DBRG_OK;
 }
 

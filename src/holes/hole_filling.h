@@ -93,6 +93,10 @@ private:
     // A loop that the open-surface test made but that is this short is a hole all the same: a real border
     // is long, while a short loop marks a jump in sampling density (as in CAD tessellations).
     static constexpr uint32_t SHORT_LOOP_EDGES = 16;
+    // Holes of at most this many edges that could not be filled are tried once more without a corner of at
+    // most MAX_DROPPED_FAN faces (fill_without_a_corner): a vertex that growing pulled across the hole.
+    static constexpr uint32_t MAX_CORNER_DROPPING_EDGES = 8;
+    static constexpr uint32_t MAX_DROPPED_FAN = 4;
     // Whether the boundary loop `loop` (its half-edges in order) is a hole (§5) rather than a real border.
     // Each edge says why growing stopped there: its candidate was refused as too large (§4), or every
     // candidate was invalid (§3.2.1). A loop is one thing or the other, so its edges vote: at a real border
@@ -119,6 +123,9 @@ private:
                                         bool& filled);
     // Fills the hole through `start`, enlarging it (§5) at most `enlargements` more times.
     dbrg_status fill_hole(uint32_t start, uint32_t enlargements, FaceJournal& journal, bool& filled);
+    // The hole of `edges` edges through the boundary half-edge from u to v, which ears and enlarging could
+    // not fill: fills it without one of its corners of at most MAX_DROPPED_FAN faces, where that works.
+    dbrg_status fill_without_a_corner(uint32_t u, uint32_t v, uint32_t edges, FaceJournal& journal, bool& filled);
     dbrg_status clip_ears(Array<uint32_t>& corners, FaceJournal& journal, bool& filled);
     bool ear_is_valid(uint32_t apex, uint32_t previous, uint32_t next, bool closes_hole) const;
     dbrg_status enlarge(const Array<uint32_t>& loop, FaceJournal& journal, Array<uint32_t>& new_starts);
