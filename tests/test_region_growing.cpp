@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "core/context.h"
 #include "core/params.h"
+#include "grow/candidate_queue.h"
 #include "points/point_conditioning.h"
 #include "delaunay/tetrahedralization.h"
 #include "grow/region_growing.h"
@@ -59,6 +61,52 @@ std::vector<double> shifted(std::vector<double> xyz, double dx) {
 }
 
 } // namespace
+
+TEST_CASE("the queue: a clearly smoother candidate first; among near ties, more faces of S, then the smaller one") {
+    const auto candidate = [](double smoothness, uint8_t neighbours, double radius, uint32_t apex) {
+        Candidate c{};
+        c.radius = radius;
+        c.apex = apex;
+        c.halfedge = 7;
+        c.set_smoothness(smoothness, neighbours);
+        return c;
+    };
+    // Apart by more than the tie: smoothness decides, whatever the rest says.
+    const double smooth = 1 - 0.25 * SMOOTHNESS_TIE, rougher = 1 - 2.5 * SMOOTHNESS_TIE;
+    CHECK(more_credible(candidate(smooth, 1, 2.0, 1), candidate(rougher, 3, 1.0, 0)));
+    CHECK_FALSE(more_credible(candidate(rougher, 3, 1.0, 0), candidate(smooth, 1, 2.0, 1)));
+    // Within one step of the tie: the candidate closing a notch first, even when it is a little less smooth ...
+    const double a = 1 - 0.1 * SMOOTHNESS_TIE, b = 1 - 0.9 * SMOOTHNESS_TIE;
+    CHECK(more_credible(candidate(b, 2, 2.0, 1), candidate(a, 1, 1.0, 0)));
+    // ... and among as many neighbours the smaller circumradius, then the smoother, then the apex id.
+    CHECK(more_credible(candidate(b, 1, 1.0, 1), candidate(a, 1, 2.0, 0)));
+    CHECK(more_credible(candidate(a, 1, 1.0, 1), candidate(b, 1, 1.0, 0)));
+    CHECK(more_credible(candidate(a, 1, 1.0, 0), candidate(a, 1, 1.0, 1)));
+    // Below -1 (no cosine is) and NaN rank last.
+    CHECK(more_credible(candidate(-1, 0, 9.0, 0), candidate(-2, 3, 1.0, 0)));
+    CHECK(more_credible(candidate(-1, 0, 9.0, 0), candidate(NAN, 3, 1.0, 0)));
+
+    // A strict weak order on random candidates (with many ties of each key), so the heap pops in sorted order.
+    std::mt19937 random(5);
+    std::uniform_int_distribution<int> pick(0, 3);
+    std::vector<Candidate> all;
+    for (uint32_t i = 0; i < 400; ++i) {
+        all.push_back(candidate(1 - pick(random) * 0.4 * SMOOTHNESS_TIE, uint8_t(pick(random)), 1 + pick(random), uint32_t(pick(random))));
+        all.back().halfedge = i;
+    }
+    for (const Candidate& x : all) {
+        CHECK_FALSE(more_credible(x, x));
+        for (const Candidate& y : all) {
+            if (more_credible(x, y)) CHECK_FALSE(more_credible(y, x));
+        }
+    }
+    Context context(Setup::params_of(nullptr));
+    CandidateQueue queue(context.memory);
+    for (const Candidate& c : all) REQUIRE(queue.push(c));
+    std::vector<Candidate> sorted = all;
+    std::sort(sorted.begin(), sorted.end(), more_credible);
+    for (const Candidate& expected : sorted) CHECK(queue.pop().halfedge == expected.halfedge);
+}
 
 TEST_CASE("the surface is a valid oriented manifold after every insertion, edge flips included") {
     uint32_t flips = 0;

@@ -290,10 +290,11 @@ dbrg_status RegionGrower::drain_queue(const ProgressSpan& progress) {
             DBRG_PROPAGATE(reject(c, verdict));
             continue;
         }
-        if (smoothness < c.smoothness) {
+        Candidate now = c;
+        now.set_smoothness(smoothness, check.shared_edges());
+        if (more_credible(c, now)) {
             // S changed around it since it was queued and it is less credible now: queue it again.
-            c.smoothness = smoothness;
-            if (!enqueue(c)) return context_.fail_out_of_memory();
+            if (!enqueue(now)) return context_.fail_out_of_memory();
             continue;
         }
         if (!passes_boundary_test(c)) {
@@ -482,11 +483,13 @@ dbrg_status RegionGrower::propose(uint32_t halfedge, const CandidateRank* after)
     Candidate c;
     if (!select_candidate(halfedge, after, c)) return DBRG_OK;
     Examined& kept = examined_[examined_next_++ % EXAMINED_KEPT];
-    kept.verdict = examine(c, c.smoothness, kept.check);
+    double smoothness;
+    kept.verdict = examine(c, smoothness, kept.check);
     kept.halfedge = halfedge;
     kept.apex = c.apex;
     kept.edits = surface_.edit_count();
-    kept.smoothness = c.smoothness;
+    kept.smoothness = smoothness;
+    c.set_smoothness(smoothness, kept.check.shared_edges());
     c.postponed = 0;
     return enqueue(c) ? DBRG_OK : context_.fail_out_of_memory();
 }

@@ -174,7 +174,7 @@ dbrg_status PlanarGrower::propose(uint32_t halfedge) {
         if (v != surface_.origin(halfedge) && v != surface_.target(halfedge)) apex = v;
     }
     Candidate c;
-    c.smoothness = FLAT;
+    c.set_smoothness(FLAT, 0);  // every candidate alike: the order is the radius's
     c.radius = triangle_radius(across);
     c.halfedge = halfedge;
     c.apex = apex;

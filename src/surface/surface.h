@@ -33,6 +33,11 @@ struct FaceCheck {
     // Corners that S already uses but that the face would touch through no edge: each gets a new fan and
     // is pinched (two sheets meet at it) until later faces join the fans.
     uint32_t pinches = 0;
+
+    // How many faces of S the face would share an edge with.
+    uint8_t shared_edges() const {
+        return static_cast<uint8_t>((shared[0] != NO_HALFEDGE) + (shared[1] != NO_HALFEDGE) + (shared[2] != NO_HALFEDGE));
+    }
 };
 
 // Half-edge h = 3 f + i of face f runs from corner i to corner (i + 1) % 3; next and prev are implicit,
