@@ -128,10 +128,10 @@ TEST_CASE("a clustered hemisphere keeps its border loop alone: folds next to the
     // Growing can pull a vertex across a small hole next to the border (a pleat of one vertex: every ear
     // folds), and enlarging such a hole runs it into the border, so it stayed open: about a quarter of
     // these samples kept a second loop (77 of seeds 1-300), 18 to 25 of 300 once the pulled corner's
-    // faces are replaced by the triangles of their rim (HoleFiller::fill_without_a_corner). Seeds 1-40
-    // here: 32 with the border alone before, 36 or 37 since.
+    // faces are replaced by the triangles of their rim (HoleFiller::fill_without_a_corner). Seeds 1-80
+    // here: 62 with the border alone before, 70 since; the bound lies between.
     uint32_t one_loop = 0;
-    for (uint64_t seed = 1; seed <= 40; ++seed) {
+    for (uint64_t seed = 1; seed <= 80; ++seed) {
         const std::vector<double> xyz = samples::sample_clustered(samples::Shape::hemisphere, 4000, 30, 2, seed);
         const test::Reconstruction result = test::reconstruct(xyz);
         REQUIRE(result.status == DBRG_OK);
@@ -140,7 +140,7 @@ TEST_CASE("a clustered hemisphere keeps its border loop alone: folds next to the
         CHECK(report.boundary_loops >= 1);
         one_loop += report.boundary_loops == 1 && report.components == 1 ? 1 : 0;
     }
-    CHECK(one_loop >= 35);
+    CHECK(one_loop >= 66);
 }
 
 namespace {
