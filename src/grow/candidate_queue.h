@@ -24,7 +24,7 @@ inline bool precedes(const CandidateRank& a, const CandidateRank& b) {
     return a.apex < b.apex;
 }
 
-// Local smooth degrees closer than this count as equal in the queue's order. On a dense sample of a smooth
+// Local smooth degrees in the same step of this size count as equal in the queue's order. On a dense sample of a smooth
 // surface nearly every candidate turns less than a degree from its neighbours (median 0.28 degrees on
 // 200,000 random points of a sphere), so nearly every LSD lies within 2^-13 of 1 and their exact values
 // order the candidates at random. The front then grows like invasion percolation: porous, its open edges
