@@ -24,14 +24,14 @@ inline bool precedes(const CandidateRank& a, const CandidateRank& b) {
     return a.apex < b.apex;
 }
 
-// Local smooth degrees in the same step of this size count as equal in the queue's order. On a dense sample of a smooth
-// surface nearly every candidate turns less than a degree from its neighbours (median 0.28 degrees on
-// 200,000 random points of a sphere), so nearly every LSD lies within 2^-13 of 1 and their exact values
-// order the candidates at random. The front then grows like invasion percolation: porous, its open edges
-// about 40 % of the faces grown, each step at an arbitrary place in memory. Among equals the queue prefers
-// the candidate with more faces of S around it (it closes a notch instead of lengthening the front), then
-// the smaller circumradius (a point under a flat Delaunay tetrahedron is reached before the big face above
-// it is taken). 2^-13 is the cosine of 0.9 degrees; 2^-12 (1.3 degrees) changed the simulated scans (a
+// Local smooth degrees in the same step of this size count as equal in the queue's order. On a dense sample
+// of a smooth surface nearly every candidate turns less than a degree from its neighbours (median 0.28
+// degrees on 200,000 random points of a sphere), so nearly every LSD lies within 2^-13 of 1 and their exact
+// values order the candidates at random. The front then grows like invasion percolation: porous, its open
+// edges about 40 % of the faces grown, each step at an arbitrary place in memory. Among equals the queue
+// prefers the candidate with more faces of S around it (it closes a notch instead of lengthening the front),
+// then the smaller circumradius (a point under a flat Delaunay tetrahedron is reached before the big face
+// above it is taken). 2^-13 is the cosine of 0.9 degrees; 2^-12 (1.3 degrees) changed the simulated scans (a
 // loop left open on one), 2^-13 and 2^-14 did not, and 2^-13 reaches more samples (docs/benchmarks.md).
 constexpr double SMOOTHNESS_TIE = 1.0 / 8192;
 
