@@ -219,7 +219,8 @@ dbrg_status HoleFiller::fill_without_a_corner(uint32_t u, uint32_t v, uint32_t e
         if (out == NO_HALFEDGE || !surface_.is_boundary(out)) return DBRG_OK;
         for (uint32_t i = 0; i < k; ++i) out = surface_.fan_exit(out);
         const uint32_t corner = surface_.origin(out);
-        if ((fixed_ && fixed_[corner]) || surface_.is_pinched(corner) || surface_.fan_size(out) > MAX_DROPPED_FAN) continue;
+        const bool fixed = fixed_ && fixed_[corner];
+        if (fixed || surface_.is_pinched(corner) || surface_.fan_size(out) > MAX_DROPPED_FAN) continue;
         // The loop runs previous -> corner -> next; the fan's faces, turning from `out`, are (corner, next,
         // rim 1), (corner, rim 1, rim 2), ..., (corner, rim k - 1, previous). Without them the hole runs
         // from next along the rest of the loop to previous, then back along the rim.
@@ -231,7 +232,9 @@ dbrg_status HoleFiller::fill_without_a_corner(uint32_t u, uint32_t v, uint32_t e
         corners.pop_back();
         fan.clear();
         rim.clear();
-        surface_.walk_fan(out, [&](uint32_t h) { fan.push_back(Surface::face_of(h)) && rim.push_back(surface_.target(Surface::next(h))); });
+        surface_.walk_fan(out, [&](uint32_t h) {
+            return fan.push_back(Surface::face_of(h)) && rim.push_back(surface_.target(Surface::next(h)));
+        });
         if (context_.memory.failed()) return context_.fail_out_of_memory();
         rim.pop_back();  // previous, already in the loop
         // A rim through the loop's own corners is no disk around the corner alone.
