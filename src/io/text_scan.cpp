@@ -69,10 +69,6 @@ bool LineReader::refuse(std::string why) {
     return false;
 }
 
-bool TokenSplitter::is_separator(char c) const {
-    return is_blank(c) || (comma_separates_ && c == ',');
-}
-
 bool TokenSplitter::next(std::string_view& token) {
     size_t begin = 0;
     while (begin < rest_.size() && is_separator(rest_[begin])) ++begin;

@@ -3,7 +3,10 @@
 // Graphics Tools 3(1), 1998.
 #include "io/vertex_normals.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/pi.h"
 
 namespace dbrg::io {
 namespace {
@@ -33,16 +36,18 @@ std::vector<float> vertex_normals(const std::vector<double>& positions, const st
         const double area_twice = length(normal);
         if (!(area_twice > 0.0) || !std::isfinite(area_twice)) continue;
         const Vector unit = {normal.x / area_twice, normal.y / area_twice, normal.z / area_twice};
+        // atan2 of |u x v| and u . v stays accurate for angles near 0 and pi, where acos does not; |u x v|
+        // at every corner is twice the area. The third angle is what the first two leave of pi.
+        double angle[3];
+        for (size_t k = 0; k < 2; ++k) {
+            angle[k] = std::atan2(area_twice, dot(corner[(k + 1) % 3] - corner[k], corner[(k + 2) % 3] - corner[k]));
+        }
+        angle[2] = std::max(PI - angle[0] - angle[1], 0.0);
         for (size_t k = 0; k < 3; ++k) {
-            const Vector to_next = corner[(k + 1) % 3] - corner[k];
-            const Vector to_previous = corner[(k + 2) % 3] - corner[k];
-            // atan2 of |u x v| and u . v stays accurate for angles near 0 and pi, where acos does not; |u x v|
-            // at every corner is twice the area.
-            const double angle = std::atan2(area_twice, dot(to_next, to_previous));
             double* sum = &sums[3 * size_t(triangles[t + k])];
-            sum[0] += angle * unit.x;
-            sum[1] += angle * unit.y;
-            sum[2] += angle * unit.z;
+            sum[0] += angle[k] * unit.x;
+            sum[1] += angle[k] * unit.y;
+            sum[2] += angle[k] * unit.z;
         }
     }
     std::vector<float> normals(sums.size(), 0.0f);

@@ -1,4 +1,5 @@
 // XYZ / PTS point reader (one point per line, blanks or commas between columns) and writer.
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <string>
@@ -63,8 +64,13 @@ private:
 
 std::unique_ptr<PointParser> xyz_points(ByteSource& source) { return std::make_unique<XyzPoints>(source); }
 
+// The shortest line a point of usual precision takes ("-0.123456 0.123456 0.123456"): room for that many
+// points is taken at once where the size is known, rather than grown by copies.
+constexpr uint64_t TYPICAL_POINT_BYTES = 28;
+
 IoStatus read_xyz(ByteSource& source, MeshData& out) {
     XyzPoints points(source);
+    out.positions.reserve(3 * size_t(std::min<uint64_t>(source.bytes_left().value_or(0) / TYPICAL_POINT_BYTES, UINT32_MAX)));
     for (;;) {
         double xyz[3];
         size_t count = 0;
