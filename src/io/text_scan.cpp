@@ -9,8 +9,6 @@
 namespace dbrg::io {
 namespace {
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
 // The first `byte` of text[from, to), or nullptr; memchr without its undefined case of a null pointer.
 const char* find_byte(std::string_view text, size_t from, size_t to, char byte) {
     return from < to ? static_cast<const char*>(std::memchr(text.data() + from, byte, to - from)) : nullptr;

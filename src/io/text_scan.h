@@ -11,6 +11,9 @@
 
 namespace dbrg::io {
 
+// Space, tab, CR, form feed or vertical tab. Inline: it is asked of every byte of a text file.
+inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
 // Hands out the lines of a text one at a time ("\n" or "\r\n" endings), counting them from 1, pulling the
 // text from a ByteSource as it goes. A line holding a zero byte, or longer than the limit, stops the
 // text with an error: that is binary data or garbage, and is refused as soon as it arrives instead of
@@ -63,10 +66,7 @@ public:
     size_t remaining() const { return rest_.size(); }
 
 private:
-    // Inline: it is asked of every byte of a text file.
-    bool is_separator(char c) const {
-        return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v' || (comma_separates_ && c == ',');
-    }
+    bool is_separator(char c) const { return is_blank(c) || (comma_separates_ && c == ','); }
 
     std::string_view rest_;
     bool comma_separates_;
