@@ -5,13 +5,7 @@
 // stage's progress. Point counts beyond the limits fail before anything is allocated or read.
 #include <doctest/doctest.h>
 
-#include <stdio.h>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <string>
@@ -444,52 +438,3 @@ TEST_CASE("page advice before large fills keeps what the memory holds, from mall
     }
     CHECK(allocator.live_blocks() == 0);
 }
-
-#if defined(__linux__)
-namespace {
-
-// The flags /proc/self/smaps lists for the mapping that holds `address` ("rd wr mr ... hg"), or "" if none does.
-std::string mapping_flags(const void* address) {
-    const uintptr_t at = reinterpret_cast<uintptr_t>(address);
-    std::ifstream smaps("/proc/self/smaps");
-    std::string line;
-    bool inside = false;
-    while (std::getline(smaps, line)) {
-        unsigned long long begin = 0, end = 0;
-        if (sscanf(line.c_str(), "%llx-%llx ", &begin, &end) == 2 && line.find(':') > line.find(' ')) {
-            inside = begin <= at && at < end;
-        } else if (inside && line.rfind("VmFlags:", 0) == 0) {
-            return line.substr(8) + " ";
-        }
-    }
-    return "";
-}
-
-bool has_transparent_huge_pages() { return std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled").good(); }
-
-// A caller's allocator that maps every block afresh, so that no advice given earlier to malloc's memory
-// (whose ranges keep it after their blocks are freed) can be on its blocks.
-void* map_block(void*, size_t size) {
-    void* block = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    return block == MAP_FAILED ? nullptr : block;
-}
-void* remap_block(void*, void*, size_t, size_t) { return nullptr; }
-void unmap_block(void*, void* block, size_t size) { munmap(block, size); }
-
-} // namespace
-
-TEST_CASE("large blocks of malloc's memory are asked for huge pages, a caller's allocator's are not") {
-    if (!has_transparent_huge_pages()) return;
-    const size_t huge = size_t(2) << 20, bytes = 6 * huge;
-    const dbrg_allocator mapping{map_block, remap_block, unmap_block, nullptr};
-    Memory from_caller(&mapping), from_malloc(nullptr);
-    for (Memory* memory : {&from_caller, &from_malloc}) {
-        void* block = memory->allocate(bytes);
-        REQUIRE(block != nullptr);
-        const uintptr_t inside = (reinterpret_cast<uintptr_t>(block) + 2 * huge - 1) & ~(huge - 1);
-        const bool advised = mapping_flags(reinterpret_cast<void*>(inside)).find(" hg ") != std::string::npos;
-        CHECK(advised == memory->uses_system_allocator());
-        memory->release(block, bytes);
-    }
-}
-#endif

@@ -40,7 +40,6 @@ void* Memory::allocate(size_t size) {
         return nullptr;
     }
     add(size, 0);
-    ask_for_huge_pages(block, size);
     return block;
 }
 
@@ -52,7 +51,6 @@ void* Memory::reallocate(void* block, size_t old_size, size_t new_size) {
         return nullptr;
     }
     add(new_size, old_size);
-    ask_for_huge_pages(moved, new_size);
     return moved;
 }
 
@@ -60,23 +58,6 @@ void Memory::release(void* block, size_t size) {
     if (!block) return;
     allocator_.deallocate(allocator_.user, block, size);
     add(0, size);
-}
-
-void Memory::ask_for_huge_pages(void* data, size_t bytes) const {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    // The huge page of x86-64 and of arm64 with 4 KiB pages; blocks of at least two of them, and only the
-    // huge pages wholly inside the block, so that the advice never reaches another block's memory.
-    constexpr uintptr_t HUGE = uintptr_t(2) << 20;
-    if (!system_ || bytes < 2 * HUGE) return;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + HUGE - 1) & ~(HUGE - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(HUGE - 1);
-    const int saved_errno = errno;
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-    errno = saved_errno;
-#else
-    (void)data;
-    (void)bytes;
-#endif
 }
 
 void Memory::populate(void* data, size_t bytes) const {

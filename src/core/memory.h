@@ -48,11 +48,6 @@ public:
     MemoryMeter* meter() const { return meter_; }
 
 private:
-    // Asks the kernel to back the whole huge pages inside a large block of malloc's memory with huge pages,
-    // where it leaves that to the program (transparent huge pages in "madvise" mode):
-    // the tetrahedralization and the surface are walked in no fixed order, and with 4 KiB pages most such
-    // steps miss the address cache. Advice only; errno is left as it was.
-    void ask_for_huge_pages(void* data, size_t bytes) const;
     void add(size_t added, size_t removed);
 
     dbrg_allocator allocator_;
