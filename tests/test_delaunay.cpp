@@ -16,6 +16,7 @@
 #include "delaunay/tetrahedralization.h"
 #include "delaunay_test_support.h"
 #include "samples/samples.h"
+#include "support/quality_suite.h"
 
 using namespace dbrg;
 using namespace dbrg_test;
@@ -349,7 +350,7 @@ TEST_CASE("threads inserting the last round at once make the tetrahedra of one t
     }
 }
 
-TEST_CASE("threads sharing the last round of a cylinder make about the predicate calls of one thread") {
+TEST_CASE("threads sharing the last round of a cylinder make about the predicate calls of one thread" * doctest::test_suite(test::QUALITY_SUITE)) {
     // Points on an open cylinder: the long tetrahedra across its inside make the threads meet, and many
     // points are set aside for the calling thread. Each of those walks from the one inserted before it, so
     // a walk that starts from an arbitrary tetrahedron around that point crosses the cylinder: counts, not

@@ -20,6 +20,7 @@
 #include "measure/mesh_report.h"
 #include "samples/samples.h"
 #include "support/mesh_checks.h"
+#include "support/quality_suite.h"
 #include "support/shared_data.h"
 
 using namespace dbrg;
@@ -124,7 +125,7 @@ TEST_CASE("open shapes sampled unevenly keep their borders, and only those") {
     }
 }
 
-TEST_CASE("a clustered hemisphere keeps its border loop alone: folds next to the border are closed too") {
+TEST_CASE("a clustered hemisphere keeps its border loop alone: folds next to the border are closed too" * doctest::test_suite(test::QUALITY_SUITE)) {
     // Growing can pull a vertex across a small hole next to the border (a pleat of one vertex: every ear
     // folds), and enlarging such a hole runs it into the border, so it stayed open: about a quarter of
     // these samples kept a second loop (77 of seeds 1-300), 23 of 300 once the pulled corner's
@@ -517,7 +518,7 @@ void check_cleaning_changes_nothing(const std::vector<double>& xyz) {
     CHECK(automatic.triangles == off.triangles);
 }
 
-TEST_CASE("cleaning changes nothing on the generated clean samples") {
+TEST_CASE("cleaning changes nothing on the generated clean samples" * doctest::test_suite(test::QUALITY_SUITE)) {
     using samples::Shape;
     for (Shape shape : {Shape::sphere, Shape::torus, Shape::double_torus, Shape::bumpy_sphere, Shape::hemisphere,
                         Shape::open_cylinder, Shape::saddle, Shape::cube, Shape::capped_cylinder, Shape::graded_sphere,
