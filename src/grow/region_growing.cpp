@@ -59,16 +59,24 @@ RegionGrower::RegionGrower(const Tetrahedralization& delaunay, Surface& surface,
       causes_(context.memory),
       flipper_(delaunay, surface, context) {}
 
+// S empty, with room for the faces of a closed surface through all n points (2n - 4) and for those hole
+// filling adds (the faces it replaces keep their slots: about 3 % more on random samples), taken at once
+// rather than grown by copies.
+dbrg_status RegionGrower::start_surface() {
+    const uint32_t n = delaunay_.vertex_count();
+    const size_t expected_faces = 2 * size_t(n) + n / 8;
+    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
+        return context_.fail_out_of_memory();
+    }
+    return DBRG_OK;
+}
+
 dbrg_status RegionGrower::grow() {
     const ProgressSpan stage(context_, DBRG_STAGE_GROW);
     const ProgressSpan growing = stage.part(0, GROW_PROGRESS_ISLANDS);
     DBRG_PROPAGATE(stage.report(0, 1));
+    DBRG_PROPAGATE(start_surface());
     const uint32_t n = delaunay_.vertex_count();
-    // A closed surface through all n points has 2n - 4 faces: reserve that at once rather than grow by halves.
-    const size_t expected_faces = 2 * size_t(n);
-    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
-        return context_.fail_out_of_memory();
-    }
     for (Examined& e : examined_) e = Examined();  // S's edit count starts again
 
     // Seeds are tried from the highest point down (§3.1.1); ties go to the smaller vertex id, which is a
@@ -130,11 +138,8 @@ dbrg_status RegionGrower::grow() {
 dbrg_status RegionGrower::grow_from(const uint32_t* seeds, size_t seed_count, const uint8_t* fixed) {
     const ProgressSpan stage(context_, DBRG_STAGE_GROW);
     DBRG_PROPAGATE(stage.report(0, 1));
+    DBRG_PROPAGATE(start_surface());
     const uint32_t n = delaunay_.vertex_count();
-    const size_t expected_faces = 2 * size_t(n);
-    if (!surface_.reset(n) || !surface_.reserve_faces(expected_faces) || !causes_.reserve_faces(expected_faces)) {
-        return context_.fail_out_of_memory();
-    }
     for (size_t i = 0; i < seed_count; ++i) {
         const uint32_t a = seeds[3 * i], b = seeds[3 * i + 1], c = seeds[3 * i + 2];
         if (a >= n || b >= n || c >= n || a == b || b == c || a == c) continue;

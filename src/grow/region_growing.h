@@ -74,6 +74,7 @@ private:
     // The examinations' verdict on a candidate; FaceCheck::Verdict is the topological part of it.
     enum class CandidateVerdict { valid, pinch, edge_nonmanifold, orientation, bowtie, dihedral, fixed };
 
+    dbrg_status start_surface();
     dbrg_status grow_component(const ProgressSpan& progress);
     dbrg_status drain_queue(const ProgressSpan& progress);
     dbrg_status report_grown(const ProgressSpan& progress) const;
