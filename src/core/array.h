@@ -60,10 +60,18 @@ public:
 
     // New elements are copies of `fill`.
     bool resize(size_t size, const T& fill = T()) {
+        const size_t old_size = size_;
+        if (!resize_for_overwrite(size)) return false;
+        for (size_t i = old_size; i < size; ++i) data_[i] = fill;
+        return true;
+    }
+
+    // New elements are left unwritten (their pages mapped, as resize maps them): for a caller that writes
+    // every one of them next.
+    bool resize_for_overwrite(size_t size) {
         if (!reserve(size)) return false;
         const size_t added_bytes = size > size_ ? (size - size_) * sizeof(T) : 0;
         if (added_bytes >= POPULATE_BYTES) memory_->populate(data_ + size_, added_bytes);
-        for (size_t i = size_; i < size; ++i) data_[i] = fill;
         size_ = size;
         return true;
     }

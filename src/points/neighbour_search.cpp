@@ -301,7 +301,7 @@ dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted
     k = std::min(std::min(wanted, MAX_NEIGHBOURS), count > 0 ? count - 1 : 0);
     neighbours.clear();
     if (k == 0) return progress.report(1, 1);
-    if (!neighbours.resize(size_t(k) * count)) return context.fail_out_of_memory();
+    if (!neighbours.resize_for_overwrite(size_t(k) * count)) return context.fail_out_of_memory();
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size.
     const size_t step = step_items(parts) / 16;
