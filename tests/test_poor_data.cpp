@@ -301,6 +301,33 @@ TEST_CASE("near-duplicates: a sphere sampled twice, each copy 1e-9 off, comes ou
     CHECK(result.stats.vertices_used > n * 99 / 100);
 }
 
+TEST_CASE("noise: tiles report their cleaning, the noisiest tile's estimate and the points they smoothed") {
+    const std::vector<double> clean = samples::sample(samples::Shape::torus, 12000);
+    const std::vector<double> noisy = jittered(clean, 0.02, 11);
+    const test::Reconstruction single = test::reconstruct(noisy);
+    REQUIRE(single.status == DBRG_OK);
+    REQUIRE(single.stats.points_smoothed > 0);
+    for (uint32_t tiles : {2u, 3u}) {
+        CAPTURE(tiles);
+        const test::Reconstruction tiled = test::reconstruct_tiled(noisy, tiles);
+        REQUIRE(tiled.status == DBRG_OK);
+        REQUIRE(tiled.stats.tiles > 1);
+        // Each tile judges its own points as noisy as the whole; the halos count in two tiles.
+        CHECK(tiled.stats.noise_level > 0.8 * single.stats.noise_level);
+        CHECK(tiled.stats.noise_level < 1.25 * single.stats.noise_level);
+        CHECK(tiled.stats.smoothing_iterations == single.stats.smoothing_iterations);
+        CHECK(tiled.stats.points_smoothed >= single.stats.points_smoothed);
+        CHECK(tiled.stats.points_smoothed < 2 * single.stats.points_smoothed);
+        CHECK(tiled.stats.seconds_clean > 0);
+    }
+    // A clean sample: estimated, not smoothed.
+    const test::Reconstruction tiled = test::reconstruct_tiled(clean, 3);
+    REQUIRE(tiled.status == DBRG_OK);
+    CHECK(tiled.stats.noise_level > 0);
+    CHECK(tiled.stats.points_smoothed == 0);
+    CHECK(tiled.stats.smoothing_iterations == 0);
+}
+
 TEST_CASE("noise: a noisy torus is smoothed for growing and comes out closed; the output stays on the input") {
     const std::vector<double> clean = samples::sample(samples::Shape::torus, 12000);
     const std::vector<double> noisy = jittered(clean, 0.02, 11);  // about a third of the spacing (0.034)

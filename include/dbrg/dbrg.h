@@ -380,7 +380,9 @@ typedef struct dbrg_stats {
     uint32_t handles_removed;        /* small handles cut from the components after hole filling (growing
                                         bridged two sheets closer than the sample spacing) */
 
-    /* Fields from version 0.4.0 on: the cleaning stage (all 0 when params.cleaning is DBRG_CLEANING_OFF). */
+    /* Fields from version 0.4.0 on: the cleaning stage (all 0 when params.cleaning is DBRG_CLEANING_OFF).
+     * After dbrg_reconstruct_tiled the counts are the tiles' sums (a halo point counts in each tile that
+     * cleans it), noise_level and smoothing_iterations the largest of the tiles'; outliers as above. */
     uint32_t outliers;               /* distinct points left out as outliers (dbrg_mesh_outliers lists them) */
     uint32_t near_duplicates_merged; /* distinct points merged into a nearby point (much closer than the
                                         local spacing); not counted in duplicates_merged */

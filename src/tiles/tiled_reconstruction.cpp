@@ -75,6 +75,8 @@ dbrg_params piece_params(const dbrg_params& params) {
     return piece;
 }
 
+// Counts and seconds add up over the pieces (a halo point cleaned in two tiles counts in both); the noise
+// estimate and the smoothing rounds are the largest a piece had.
 void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
     total.tetrahedra += piece.tetrahedra;
     total.candidates_evaluated += piece.candidates_evaluated;
@@ -99,6 +101,11 @@ void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
     total.seconds_delaunay += piece.seconds_delaunay;
     total.seconds_grow += piece.seconds_grow;
     total.seconds_fill_holes += piece.seconds_fill_holes;
+    total.near_duplicates_merged += piece.near_duplicates_merged;
+    total.points_smoothed += piece.points_smoothed;
+    total.smoothing_iterations = std::max(total.smoothing_iterations, piece.smoothing_iterations);
+    total.noise_level = std::max(total.noise_level, piece.noise_level);
+    total.seconds_clean += piece.seconds_clean;
 }
 
 // Reconstructs tile `k` of the slabs and appends its owned triangles and its core's outliers, in the caller's
