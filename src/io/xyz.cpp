@@ -65,12 +65,16 @@ private:
 std::unique_ptr<PointParser> xyz_points(ByteSource& source) { return std::make_unique<XyzPoints>(source); }
 
 // The shortest line a point of usual precision takes ("-0.123456 0.123456 0.123456"): room for that many
-// points is taken at once where the size is known, rather than grown by copies.
+// points is taken at once where the size is known, rather than grown by copies ...
 constexpr uint64_t TYPICAL_POINT_BYTES = 28;
+// ... but for no more than this many (1.5 GiB): a file of long lines (normals, colours) holds far fewer
+// points than that estimate, and room it never needs must not make a readable file fail for memory.
+constexpr uint64_t MAX_RESERVED_POINTS = uint64_t(1) << 26;
 
 IoStatus read_xyz(ByteSource& source, MeshData& out) {
     XyzPoints points(source);
-    out.positions.reserve(3 * size_t(std::min<uint64_t>(source.bytes_left().value_or(0) / TYPICAL_POINT_BYTES, UINT32_MAX)));
+    const uint64_t expected = source.bytes_left().value_or(0) / TYPICAL_POINT_BYTES;
+    out.positions.reserve(3 * size_t(std::min(expected, MAX_RESERVED_POINTS)));
     for (;;) {
         double xyz[3];
         size_t count = 0;
