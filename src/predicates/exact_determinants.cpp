@@ -55,6 +55,55 @@ struct Differences {
     bool tails;  // some lo is not 0: some difference is not a double
 };
 
+// Knuth's two-difference, on doubles or, lane by lane with the same operations, on pairs of them.
+template <class Lanes>
+[[gnu::always_inline]] inline void two_difference(Lanes a, Lanes b, Lanes& hi, Lanes& lo) {
+    hi = a - b;
+    const Lanes b_virtual = a - hi, a_virtual = hi + b_virtual;
+    lo = (a - a_virtual) + (b_virtual - b);
+}
+
+template <int Rows>
+[[gnu::always_inline]] inline void set_top(double largest, Differences<Rows>& d) {
+    // Rounding is monotone and 2^top is a double: a rounded difference below 2^top is one of an exact
+    // difference below it.
+    d.top = largest == 0 ? 0 : exponent_above(largest);
+}
+
+#if defined(__SSE2__)
+// Two differences at a time: each row's x and y, then the z of two rows (the exact stage's preparation
+// took as many instructions as its arithmetic on the doubles of a sphere).
+template <int Points>
+[[gnu::always_inline]] inline Differences<Points - 1> differences(const double* const* points) {
+    constexpr int Rows = Points - 1;
+    Differences<Rows> d;
+    const double* last = points[Rows];
+    const __m128d last_xy = _mm_loadu_pd(last), last_z = _mm_set1_pd(last[2]), sign_bit = _mm_set1_pd(-0.0);
+    __m128d largest = _mm_setzero_pd(), tails = _mm_setzero_pd();
+    const auto take = [&](__m128d a, __m128d b, __m128d& hi, __m128d& lo) {
+        two_difference(a, b, hi, lo);
+        tails = _mm_or_pd(tails, _mm_cmpneq_pd(lo, _mm_setzero_pd()));  // -0 is 0
+        largest = _mm_max_pd(largest, _mm_andnot_pd(sign_bit, hi));
+    };
+    __m128d hi, lo;
+    for (int i = 0; i < Rows; ++i) {
+        take(_mm_loadu_pd(points[i]), last_xy, hi, lo);
+        _mm_storeu_pd(d.hi[i], hi);
+        _mm_storeu_pd(d.lo[i], lo);
+    }
+    for (int i = 0; i < Rows; i += 2) {
+        const int j = i + 1 < Rows ? i + 1 : i;  // an odd last row pairs with itself
+        take(_mm_set_pd(points[j][2], points[i][2]), last_z, hi, lo);
+        _mm_storel_pd(&d.hi[i][2], hi);
+        _mm_storel_pd(&d.lo[i][2], lo);
+        _mm_storeh_pd(&d.hi[j][2], hi);
+        _mm_storeh_pd(&d.lo[j][2], lo);
+    }
+    d.tails = _mm_movemask_pd(tails) != 0;
+    set_top(_mm_cvtsd_f64(_mm_max_sd(largest, _mm_unpackhi_pd(largest, largest))), d);
+    return d;
+}
+#else
 template <int Points>
 [[gnu::always_inline]] inline Differences<Points - 1> differences(const double* const* points) {
     Differences<Points - 1> d;
@@ -62,46 +111,21 @@ template <int Points>
     uint64_t tail_bits = 0;
     for (int i = 0; i < Points - 1; ++i) {
         for (int k = 0; k < 3; ++k) {
-            const double a = points[i][k], b = points[Points - 1][k];
-            const double hi = a - b, b_virtual = a - hi, a_virtual = hi + b_virtual;
-            const double lo = (a - a_virtual) + (b_virtual - b);
-            d.hi[i][k] = hi;
-            d.lo[i][k] = lo;
-            tail_bits |= bits_of(lo) << 1;  // not the sign: -0 is 0
-            largest = fabs(hi) > largest ? fabs(hi) : largest;
+            two_difference(points[i][k], points[Points - 1][k], d.hi[i][k], d.lo[i][k]);
+            tail_bits |= bits_of(d.lo[i][k]) << 1;  // not the sign: -0 is 0
+            largest = fabs(d.hi[i][k]) > largest ? fabs(d.hi[i][k]) : largest;
         }
     }
     d.tails = tail_bits != 0;
-    // Rounding is monotone and 2^top is a double: a rounded difference below 2^top is one of an exact
-    // difference below it.
-    d.top = largest == 0 ? 0 : exponent_above(largest);
+    set_top(largest, d);
     return d;
 }
-
-// rows = the differences / 2^(top - 11) as machine words, when each is a multiple of that power of two
-// (then each is below 2^11). Returns false, rows unspecified, when one is not.
-template <int Rows>
-[[gnu::always_inline]] inline bool machine_word_rows(const Differences<Rows>& d, int64_t (*rows)[3]) {
-    const int scale_exponent = 11 - d.top;
-    if (d.tails || scale_exponent < -1022 || scale_exponent > 1023) return false;  // tails span over 53 bits
-    const double scale = power_of_two(scale_exponent), round = 0x1.8p52;
-    // (v + round) - round is v rounded to an integer, for |v| < 2^51: v is one when the two are equal,
-    // and then the low bits of v + round are v's. The differences' bits are ORed (x - x is +0, never -0).
-    uint64_t fractions = 0;
-    for (int i = 0; i < Rows; ++i) {
-        for (int k = 0; k < 3; ++k) {
-            const double v = d.hi[i][k] * scale, shifted = v + round, integer = shifted - round;
-            fractions |= bits_of(integer - v);
-            rows[i][k] = static_cast<int64_t>(bits_of(shifted) - bits_of(round));
-        }
-    }
-    return fractions == 0;
-}
+#endif
 
 // rows = the differences / 2^(top - 62) as one-limb integers, when each is a multiple of that power of two
 // (then each is below 2^62, one limb). Returns false, rows unspecified, when one is not.
 template <int Rows>
-[[gnu::always_inline]] inline bool one_limb_rows(const Differences<Rows>& d, Int<1> (*rows)[3]) {
+[[gnu::always_inline]] inline bool one_limb_rows(const Differences<Rows>& d, Int<1> (*rows)[3], uint64_t& ored_limbs) {
     const int scale_exponent = 62 - d.top;
     if (scale_exponent < -1022 || scale_exponent > 1023) return false;
     // Exact products: below 2^62, and, as the differences are multiples of 2^(top - 254), not below 2^-192.
@@ -119,9 +143,22 @@ template <int Rows>
                 integral &= static_cast<double>(lo_integer) == lo;
             }
             rows[i][k].limb[0] = static_cast<uint64_t>(hi_integer + lo_integer);
+            ored_limbs |= rows[i][k].limb[0];
         }
     }
     return integral;
+}
+
+// rows = one-limb rows / 2^51 as machine words, when every difference is a double (no tails) and every
+// limb a multiple of 2^51: the differences are then integer multiples of 2^(top - 11), below 2^11.
+template <int Rows>
+[[gnu::always_inline]] inline bool machine_word_rows(const Differences<Rows>& d, const Int<1> (*one)[3],
+                                                     uint64_t ored_limbs, int64_t (*rows)[3]) {
+    constexpr int FREE_BITS = 62 - 11;
+    if (d.tails || (ored_limbs & ((uint64_t(1) << FREE_BITS) - 1)) != 0) return false;
+    for (int i = 0; i < Rows; ++i)
+        for (int k = 0; k < 3; ++k) rows[i][k] = static_cast<int64_t>(one[i][k].limb[0]) >> FREE_BITS;  // exact
+    return true;
 }
 
 // The finest binary grain among the differences: every one is a multiple of 2^unit.
@@ -156,10 +193,13 @@ void rows_on_grid(const Differences<Rows>& d, int unit, Int<K> (*rows)[3]) {
 // any one point cloud whose coordinates are of similar size, more for coordinates near 0 next to large ones.
 template <int Rows, class Evaluate>
 int evaluate_exactly(const Differences<Rows>& d, Evaluate evaluate) {
-    int64_t small[Rows][3];
-    if (machine_word_rows(d, small)) return evaluate(small);
     Int<1> one[Rows][3];
-    if (one_limb_rows(d, one)) return evaluate(one);
+    uint64_t ored_limbs = 0;
+    if (one_limb_rows(d, one, ored_limbs)) {
+        int64_t small[Rows][3];
+        if (machine_word_rows(d, one, ored_limbs, small)) return evaluate(small);
+        return evaluate(one);
+    }
     const int unit = finest_unit(d), width = d.top - unit;
     if (width <= 62) {
         rows_on_grid(d, unit, one);
