@@ -597,6 +597,15 @@ DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats
     return copy_stats(mesh->stats, *stats);
 }
 
+DBRG_API dbrg_status dbrg_stats_add_piece(dbrg_stats* total, const dbrg_stats* piece) {
+    if (!total || !piece || total->struct_size < sizeof(dbrg_stats) || piece->struct_size < sizeof(dbrg_stats)) {
+        return DBRG_ERR_INVALID_ARGUMENT;
+    }
+    add_piece_stats(*piece, *total);
+    total->tile_peak_bytes = std::max(total->tile_peak_bytes, piece->peak_bytes);
+    return DBRG_OK;
+}
+
 DBRG_API dbrg_status dbrg_tetrahedralize(const dbrg_points* points, const dbrg_params* given,
                                          dbrg_tetrahedralization** out) {
     if (!out) return DBRG_ERR_INVALID_ARGUMENT;

@@ -416,6 +416,35 @@ static void test_tetrahedralization(void) {
     dbrg_tetrahedralization_destroy(tets);
 }
 
+/* A piece's figures added to a whole run's: counts add up, the noise estimate is the larger, the whole
+ * mesh's figures stay the total's, the piece's peak becomes the tile peak; short or missing structs fail. */
+static void test_stats_add_piece(void) {
+    dbrg_stats total, piece;
+    memset(&total, 0, sizeof total);
+    memset(&piece, 0, sizeof piece);
+    total.struct_size = piece.struct_size = sizeof(dbrg_stats);
+    total.tetrahedra = 5;
+    total.triangles = 7;
+    total.noise_level = 0.1;
+    total.tile_peak_bytes = 10;
+    piece.tetrahedra = 2;
+    piece.triangles = 100;
+    piece.noise_level = 0.3;
+    piece.smoothing_iterations = 3;
+    piece.peak_bytes = 20;
+    piece.seconds_grow = 0.5;
+    CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_OK);
+    CHECK(total.tetrahedra == 7 && total.triangles == 7 && total.noise_level == 0.3);
+    CHECK(total.smoothing_iterations == 3 && total.tile_peak_bytes == 20 && total.seconds_grow == 0.5);
+    CHECK(total.peak_bytes == 0);
+    piece.noise_level = 0.2;
+    CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_OK && total.noise_level == 0.3 && total.tetrahedra == 9);
+    CHECK(dbrg_stats_add_piece(NULL, &piece) == DBRG_ERR_INVALID_ARGUMENT);
+    CHECK(dbrg_stats_add_piece(&total, NULL) == DBRG_ERR_INVALID_ARGUMENT);
+    piece.struct_size = offsetof(dbrg_stats, points_inserted);
+    CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_ERR_INVALID_ARGUMENT && total.tetrahedra == 9);
+}
+
 static void test_tiles(void) {
     const size_t n = 8000; /* 3 slabs of a sphere this dense are wider than the strips around their walls */
     double* xyz = sphere_points(n);
@@ -498,6 +527,7 @@ int main(void) {
     test_allocator();
     test_tetrahedralization();
     test_tiles();
+    test_stats_add_piece();
     printf("%d passed, %d failed\n", checks_passed, checks_failed);
     return checks_failed == 0 ? 0 : 1;
 }

@@ -596,6 +596,16 @@ DBRG_API const uint64_t* dbrg_tile_mesh_outliers(const dbrg_tile_mesh* mesh, uin
 /* Copies the statistics of the call, as dbrg_mesh_stats. */
 DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats* stats);
 
+/* Adds the statistics of one piece of a tiled run (dbrg_tile_mesh_stats of a dbrg_reconstruct_tile or
+ * dbrg_seam_stitch result) to `total` as dbrg_reconstruct_tiled adds its own pieces' (since 0.5.0): counts
+ * and seconds add up, noise_level and smoothing_iterations become the larger of the two, tile_peak_bytes the
+ * larger of total's and the piece's peak_bytes; the figures of the whole mesh (points, triangles, loops,
+ * components, outliers, tiles) stay total's. A driver that runs the pieces elsewhere calls it once a piece
+ * on dbrg_mesh_stats of its dbrg_mesh_assemble result to report what the C loop reports. Returns
+ * DBRG_ERR_INVALID_ARGUMENT when either is NULL or its struct_size is below this version's
+ * sizeof(dbrg_stats). */
+DBRG_API dbrg_status dbrg_stats_add_piece(dbrg_stats* total, const dbrg_stats* piece);
+
 /* ------------------------------------------------------------------------------------------------
  * Delaunay tetrahedralization — EXPERIMENTAL
  * ---------------------------------------------------------------------------------------------- */

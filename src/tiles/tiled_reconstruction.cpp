@@ -75,38 +75,6 @@ dbrg_params piece_params(const dbrg_params& params) {
     return piece;
 }
 
-// Counts and seconds add up over the pieces (a halo point cleaned in two tiles counts in both); the noise
-// estimate and the smoothing rounds are the largest a piece had.
-void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
-    total.tetrahedra += piece.tetrahedra;
-    total.candidates_evaluated += piece.candidates_evaluated;
-    total.rejected_edge_nonmanifold += piece.rejected_edge_nonmanifold;
-    total.rejected_orientation += piece.rejected_orientation;
-    total.rejected_bowtie += piece.rejected_bowtie;
-    total.rejected_dihedral += piece.rejected_dihedral;
-    total.rejected_boundary += piece.rejected_boundary;
-    total.holes_found += piece.holes_found;
-    total.holes_filled += piece.holes_filled;
-    total.holes_left_open += piece.holes_left_open;
-    total.hole_triangles_delaunay += piece.hole_triangles_delaunay;
-    total.hole_triangles_added += piece.hole_triangles_added;
-    total.hole_triangles_removed += piece.hole_triangles_removed;
-    total.handles_removed += piece.handles_removed;
-    total.points_inserted += piece.points_inserted;
-    total.pinch_faces_removed += piece.pinch_faces_removed;
-    total.predicate_calls += piece.predicate_calls;
-    total.predicate_filter_failures += piece.predicate_filter_failures;
-    total.predicate_perturbations += piece.predicate_perturbations;
-    total.seconds_sort += piece.seconds_sort;
-    total.seconds_delaunay += piece.seconds_delaunay;
-    total.seconds_grow += piece.seconds_grow;
-    total.seconds_fill_holes += piece.seconds_fill_holes;
-    total.near_duplicates_merged += piece.near_duplicates_merged;
-    total.points_smoothed += piece.points_smoothed;
-    total.smoothing_iterations = std::max(total.smoothing_iterations, piece.smoothing_iterations);
-    total.noise_level = std::max(total.noise_level, piece.noise_level);
-    total.seconds_clean += piece.seconds_clean;
-}
 
 // Reconstructs tile `k` of the slabs and appends its owned triangles and its core's outliers, in the caller's
 // indexing, to `owned` and `outliers`.
@@ -235,6 +203,37 @@ dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, c
 }
 
 } // namespace
+
+void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
+    total.tetrahedra += piece.tetrahedra;
+    total.candidates_evaluated += piece.candidates_evaluated;
+    total.rejected_edge_nonmanifold += piece.rejected_edge_nonmanifold;
+    total.rejected_orientation += piece.rejected_orientation;
+    total.rejected_bowtie += piece.rejected_bowtie;
+    total.rejected_dihedral += piece.rejected_dihedral;
+    total.rejected_boundary += piece.rejected_boundary;
+    total.holes_found += piece.holes_found;
+    total.holes_filled += piece.holes_filled;
+    total.holes_left_open += piece.holes_left_open;
+    total.hole_triangles_delaunay += piece.hole_triangles_delaunay;
+    total.hole_triangles_added += piece.hole_triangles_added;
+    total.hole_triangles_removed += piece.hole_triangles_removed;
+    total.handles_removed += piece.handles_removed;
+    total.points_inserted += piece.points_inserted;
+    total.pinch_faces_removed += piece.pinch_faces_removed;
+    total.predicate_calls += piece.predicate_calls;
+    total.predicate_filter_failures += piece.predicate_filter_failures;
+    total.predicate_perturbations += piece.predicate_perturbations;
+    total.seconds_sort += piece.seconds_sort;
+    total.seconds_delaunay += piece.seconds_delaunay;
+    total.seconds_grow += piece.seconds_grow;
+    total.seconds_fill_holes += piece.seconds_fill_holes;
+    total.near_duplicates_merged += piece.near_duplicates_merged;
+    total.points_smoothed += piece.points_smoothed;
+    total.smoothing_iterations = std::max(total.smoothing_iterations, piece.smoothing_iterations);
+    total.noise_level = std::max(total.noise_level, piece.noise_level);
+    total.seconds_clean += piece.seconds_clean;
+}
 
 bool TileCore::contains(const double* p) const {
     for (int axis = 0; axis < 3; ++axis) {

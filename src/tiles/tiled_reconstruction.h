@@ -70,6 +70,11 @@ dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, 
 dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Array<uint32_t>& outliers,
                            Context& context, SurfaceResult& result);
 
+// Adds a piece's figures (a tile's, a seam stitch's) to the whole run's: counts and seconds add up (a halo
+// point cleaned in two tiles counts in both); the noise estimate and the smoothing rounds are the largest a
+// piece had. The whole mesh's figures (points, faces, loops, outliers, tiles) are the total's own.
+void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total);
+
 // Reconstructs `points` as `tile_count` slabs (plan_tiling), one after another, then stitches the even
 // walls (the first, third, ...) and then the odd ones, each stitch on the faces as they were before its
 // half began, as a cluster would run them at once, and assembles the result (docs/tiles.md). One tile is

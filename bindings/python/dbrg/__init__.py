@@ -460,13 +460,18 @@ Delaunay = collections.namedtuple("Delaunay", ["tets", "adjacency"])
 NO_NEIGHBOR = _capi.DBRG_NO_NEIGHBOR
 
 
+def _stats_of(stats):
+    """A dbrg_stats as Mesh.stats: every field but struct_size."""
+    return {name: getattr(stats, name) for name, _ in _capi.dbrg_stats._fields_ if name != "struct_size"}
+
+
 def _stats_dict(lib, handle):
     stats = _capi.dbrg_stats()
     stats.struct_size = ctypes.sizeof(stats)
     status = lib.dbrg_mesh_stats(handle, ctypes.byref(stats))
     if status != _OK:
         raise _error(lib, status, b"dbrg_mesh_stats failed")
-    return {name: getattr(stats, name) for name, _ in _capi.dbrg_stats._fields_ if name != "struct_size"}
+    return _stats_of(stats)
 
 
 def _pointer(array, c_type):

@@ -240,6 +240,7 @@ FUNCTIONS = {
     "dbrg_tile_mesh_dropped": (u64_p, [tile_mesh_p, u64_p]),
     "dbrg_tile_mesh_outliers": (u64_p, [tile_mesh_p, u64_p]),
     "dbrg_tile_mesh_stats": (c_enum, [tile_mesh_p, POINTER(dbrg_stats)]),
+    "dbrg_stats_add_piece": (c_enum, [POINTER(dbrg_stats), POINTER(dbrg_stats)]),
     "dbrg_tetrahedralize": (c_enum, [POINTER(dbrg_points), POINTER(dbrg_params), POINTER(tets_p)]),
     "dbrg_tetrahedralization_destroy": (None, [tets_p]),
     "dbrg_tetrahedralization_status": (c_enum, [tets_p]),

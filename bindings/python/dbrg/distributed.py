@@ -19,12 +19,13 @@ this package importable on the workers.
 
 import ctypes
 import platform
+import time
 import warnings
 
 import numpy as np
 
 from . import _capi
-from . import _error, _mesh, _params, _point_array, library, reconstruct as _reconstruct_one
+from . import _error, _mesh, _params, _point_array, _stats_of, library, reconstruct as _reconstruct_one
 
 __all__ = ["reconstruct", "plan", "Plan", "local_cluster"]
 
@@ -123,6 +124,17 @@ def _tile_result(lib, status, handle, index_type):
     return np.ctypeslib.as_array(pointer, shape=(count, 3)).astype(index_type)
 
 
+def _piece_stats(lib, handle):
+    """The statistics of a tile's or a stitch's call as the bytes of a dbrg_stats, for the assembly to add
+    up (dbrg_stats_add_piece)."""
+    stats = _capi.dbrg_stats()
+    stats.struct_size = ctypes.sizeof(stats)
+    status = lib.dbrg_tile_mesh_stats(handle, ctypes.byref(stats))
+    if status != _OK:
+        raise _error(lib, status, b"dbrg_tile_mesh_stats failed")
+    return bytes(stats)
+
+
 def _ids(pointer, count, index_type):
     """`count` uint64 ids at `pointer` as an array of `index_type`."""
     if count == 0:
@@ -132,8 +144,8 @@ def _ids(pointer, count, index_type):
 
 def tile_task(xyz, ids, low, high, options):
     """A tile: dbrg_reconstruct_tile on its points (core and halo) with their global ids. Returns (faces,
-    outliers): the owned faces as an (M, 3) array of global ids and the ids of its core's outliers, of the
-    ids' type."""
+    outliers, stats): the owned faces as an (M, 3) array of global ids and the ids of its core's outliers, of
+    the ids' type, and the call's statistics (_piece_stats)."""
     _keep_freed_blocks()
     lib = library()
     xyz, view = _view(xyz)
@@ -147,15 +159,15 @@ def tile_task(xyz, ids, low, high, options):
         faces = _tile_result(lib, status, handle, index_type)
         count = ctypes.c_uint64()
         pointer = lib.dbrg_tile_mesh_outliers(handle, ctypes.byref(count))
-        return faces, _ids(pointer, count.value, index_type)
+        return faces, _ids(pointer, count.value, index_type), _piece_stats(lib, handle)
     finally:
         lib.dbrg_tile_mesh_destroy(handle)
 
 
 def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
     """A wall's stitch: dbrg_seam_stitch on the points and faces near the wall (global ids). Returns
-    (dropped, added): the indices into `faces` of the faces to drop, and the (K, 3) faces to add, of the
-    ids' type."""
+    (dropped, added, stats): the indices into `faces` of the faces to drop, the (K, 3) faces to add, of the
+    ids' type, and the call's statistics (_piece_stats)."""
     _keep_freed_blocks()
     lib = library()
     xyz, view = _view(xyz)
@@ -174,7 +186,7 @@ def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
         added = _tile_result(lib, status, handle, index_type)
         count = ctypes.c_uint64()
         pointer = lib.dbrg_tile_mesh_dropped(handle, ctypes.byref(count))
-        return _ids(pointer, count.value, np.int64), added
+        return _ids(pointer, count.value, np.int64), added, _piece_stats(lib, handle)
     finally:
         lib.dbrg_tile_mesh_destroy(handle)
 
@@ -254,10 +266,13 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
     progress: show Dask's progress bar for the tiles and for each half of the stitches.
     options: the surface parameters of dbrg.reconstruct (sliver_angle, boundary_factor, boundary_mean,
         fill_holes, max_hole_edges, max_components, backend, cleaning); every task uses one thread.
-    Mesh.stats holds the assembly's figures, with `tiles` the number of slabs run; Mesh.outliers the points
+    Mesh.stats holds the assembly's figures with the tiles' and stitches' added as the C loop adds them
+    (dbrg_stats_add_piece), `tiles` the number of slabs run, seconds_total the whole run on this machine
+    (the other seconds are the pieces' own, added up); Mesh.outliers the points
     the tiles left out as outliers, each decided by the tile whose core holds it. Raises ImportError when
     distributed cannot be imported, and dbrg.Error subclasses as dbrg.reconstruct does.
     """
+    started = time.monotonic()
     unknown = set(options) - set(_OPTIONS)
     if unknown:
         raise TypeError("reconstruct() got unexpected keyword arguments %s" % ", ".join(sorted(unknown)))
@@ -283,18 +298,22 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
             # Dask advises scattering large task arguments; here they are sent in the tasks on purpose, so
             # that a task outlives the worker it ran on (module docstring).
             warnings.filterwarnings("ignore", message="Large object of size", category=UserWarning)
-            faces, outliers = _tiles(client, array, cut, options, progress)
+            faces, outliers, pieces = _tiles(client, array, cut, options, progress)
             for half in (0, 1):
-                faces = _stitch_half(client, array, faces, outliers, cut, cut.walls[half::2], options, progress)
+                faces, stitched = _stitch_half(client, array, faces, outliers, cut, cut.walls[half::2], options,
+                                               progress)
+                pieces += stitched
     finally:
         for thing in opened:
             thing.close()
-    return _assemble(lib, points, array, faces, outliers, len(cut.walls) + 1)
+    mesh = _assemble(lib, points, array, faces, outliers, len(cut.walls) + 1, pieces)
+    mesh.stats["seconds_total"] = time.monotonic() - started
+    return mesh
 
 
 def _tiles(client, array, cut, options, progress):
     """Every tile's owned faces, concatenated in tile order: an (F, 3) array of point indices (_index_type),
-    and the tiles' outliers, ascending (each point lies in one core: none comes twice).
+    the tiles' outliers, ascending (each point lies in one core: none comes twice), and their statistics.
     Each tile is sent as soon as its points are cut, so the first tiles run while the next are cut. (Tasks
     are submitted as impure: their keys are not hashed from their arguments, megabytes of points.)"""
     coordinate = array[:, cut.axis]
@@ -306,12 +325,13 @@ def _tiles(client, array, cut, options, progress):
         futures.append(client.submit(tile_task, array[inside], inside.astype(index_type), low, high, options,
                                      pure=False))
     results = _wait(client, futures, progress)
-    return np.concatenate([faces for faces, _ in results]), np.sort(np.concatenate([ids for _, ids in results]))
+    return (np.concatenate([faces for faces, _, _ in results]), np.sort(np.concatenate([ids for _, ids, _ in results])),
+            [stats for _, _, stats in results])
 
 
 def _stitch_half(client, array, faces, outliers, cut, walls, options, progress):
     """The faces after stitching `walls` (a half: two slabs apart, so their stitches touch disjoint faces),
-    each stitch on `faces` as they are."""
+    each stitch on `faces` as they are, and the stitches' statistics."""
     futures, given_faces = [], []
     coordinate = array[:, cut.axis].copy()
     coordinate[outliers] = np.nan
@@ -323,14 +343,29 @@ def _stitch_half(client, array, faces, outliers, cut, walls, options, progress):
     results = _wait(client, futures, progress)
     keep = np.ones(len(faces), dtype=bool)
     added = []
-    for given, (dropped, grown) in zip(given_faces, results):
+    for given, (dropped, grown, _) in zip(given_faces, results):
         keep[given[dropped]] = False
         added.append(grown)
-    return np.concatenate([faces[keep]] + added)
+    return np.concatenate([faces[keep]] + added), [stats for _, _, stats in results]
 
 
-def _assemble(lib, points, array, faces, outliers, tiles):
-    """dbrg_mesh_assemble on the whole cloud, the stitched faces and the tiles' outliers: the dbrg.Mesh."""
+def _added_up(lib, handle, pieces):
+    """dbrg_mesh_stats of the assembly with every piece's added (dbrg_stats_add_piece), as the C loop adds
+    its own: a dbrg_stats."""
+    total = _capi.dbrg_stats()
+    total.struct_size = ctypes.sizeof(total)
+    status = lib.dbrg_mesh_stats(handle, ctypes.byref(total))
+    for piece in pieces:
+        if status == _OK:
+            status = lib.dbrg_stats_add_piece(ctypes.byref(total), ctypes.byref(_capi.dbrg_stats.from_buffer_copy(piece)))
+    if status != _OK:
+        raise _error(lib, status, b"the pieces' statistics could not be added up")
+    return total
+
+
+def _assemble(lib, points, array, faces, outliers, tiles, pieces):
+    """dbrg_mesh_assemble on the whole cloud, the stitched faces and the tiles' outliers: the dbrg.Mesh, its
+    statistics with those of the pieces (_piece_stats of the tiles and stitches) added."""
     xyz, view = _view(array)
     triangles = np.ascontiguousarray(faces, dtype=np.uint32)
     left_out = np.ascontiguousarray(outliers, dtype=np.uint32)
@@ -342,6 +377,7 @@ def _assemble(lib, points, array, faces, outliers, tiles):
         if status != _OK:
             raise _error(lib, status, lib.dbrg_mesh_message(handle) if handle else b"")
         mesh = _mesh(lib, handle, np.asarray(points))
+        mesh.stats = _stats_of(_added_up(lib, handle, pieces))
         mesh.stats["tiles"] = tiles
         return mesh
     finally:

@@ -274,6 +274,7 @@ extern "C" {
     pub fn dbrg_tile_mesh_dropped(mesh: *const dbrg_tile_mesh, out_count: *mut u64) -> *const u64;
     pub fn dbrg_tile_mesh_outliers(mesh: *const dbrg_tile_mesh, out_count: *mut u64) -> *const u64;
     pub fn dbrg_tile_mesh_stats(mesh: *const dbrg_tile_mesh, stats: *mut dbrg_stats) -> dbrg_status;
+    pub fn dbrg_stats_add_piece(total: *mut dbrg_stats, piece: *const dbrg_stats) -> dbrg_status;
 
     pub fn dbrg_tetrahedralize(
         points: *const dbrg_points,
