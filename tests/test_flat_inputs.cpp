@@ -36,7 +36,7 @@ std::vector<Triangle> triangles_of(const std::vector<uint32_t>& flat) {
 // integers the determinant's terms stay far below 2^127. Positive when d is inside the circle of the
 // counter-clockwise a, b, c. Independent of the library's predicates.
 int incircle_uv(const double* a, const double* b, const double* c, const double* d) {
-    using Wide = __int128;
+    __extension__ typedef __int128 Wide;  // __extension__: -Wpedantic knows no 128-bit type
     const auto scaled = [](double x) { return Wide(std::llround(x * 256)); };
     const Wide adx = scaled(a[0]) - scaled(d[0]), ady = scaled(a[1]) - scaled(d[1]);
     const Wide bdx = scaled(b[0]) - scaled(d[0]), bdy = scaled(b[1]) - scaled(d[1]);
