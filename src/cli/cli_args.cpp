@@ -1,9 +1,11 @@
 // Command-line helpers shared by the subcommands: option parsing, exit codes, error lines, output files.
 #include "cli/cli_args.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
 
 #include "cli/interrupt.h"
 #include "io/file_output.h"
@@ -117,16 +119,21 @@ bool parse_count(const std::string& text, uint32_t& value) {
 }
 
 bool parse_size(const std::string& text, uint64_t& bytes) {
+    // Longer suffixes first: "kib" and "kb" end in "b" too.
     static const struct {
-        char letter;
+        const char* suffix;
         double factor;
-    } UNITS[] = {{'K', 1024.0}, {'M', 1024.0 * 1024}, {'G', 1024.0 * 1024 * 1024}, {'T', 1024.0 * 1024 * 1024 * 1024}};
+    } UNITS[] = {{"kib", 0x1p10}, {"mib", 0x1p20}, {"gib", 0x1p30}, {"tib", 0x1p40}, {"kb", 1e3}, {"mb", 1e6},
+                 {"gb", 1e9},     {"tb", 1e12},    {"k", 0x1p10},   {"m", 0x1p20},   {"g", 0x1p30}, {"t", 0x1p40},
+                 {"b", 1}};
     std::string number = text;
+    for (char& c : number) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     double factor = 1;
     for (const auto& unit : UNITS) {
-        if (!number.empty() && (number.back() == unit.letter || number.back() == unit.letter + ('a' - 'A'))) {
+        const size_t length = std::strlen(unit.suffix);
+        if (number.size() > length && number.compare(number.size() - length, length, unit.suffix) == 0) {
             factor = unit.factor;
-            number.pop_back();
+            number.resize(number.size() - length);
             break;
         }
     }

@@ -65,9 +65,9 @@ const char* const RECONSTRUCT_USAGE =
     "                           stitch them (docs/tiles.md): the memory of about one slab at a time\n"
     "                           besides the points; the mesh depends on N (default 1: one piece)\n"
     "  --max-memory SIZE        for clouds larger than memory (.ply or .xyz INPUT, binary .ply OUTPUT):\n"
-    "                           read the file in passes and reconstruct slabs sized to SIZE (e.g. 1G,\n"
-    "                           512M) one after another from files on disk, writing the mesh as it goes;\n"
-    "                           no vertex normals or other properties (docs/tiles.md)\n"
+    "                           read the file in passes and reconstruct slabs sized to SIZE (e.g. 1G or\n"
+    "                           1GiB, 512M, 2GB) one after another from files on disk, writing the mesh\n"
+    "                           as it goes; no vertex normals or other properties (docs/tiles.md)\n"
     "  --no-normals             write no vertex normals\n"
     "  --drop-unused            write only the vertices the triangles use (renumbered, in input order)\n"
     "  --snapshots K            also write the surface at K evenly spaced stages of growth (points\n"
@@ -204,7 +204,7 @@ int reconstruct_out_of_core(const ParsedArgs& args, const dbrg_params& params, c
                             const std::string& output) {
     uint64_t budget = 0;
     if (!parse_size(args.value("--max-memory"), budget)) {
-        return report_error(EXIT_USAGE, "reconstruct: --max-memory takes a size such as 1G, 512M or 1500000000");
+        return report_error(EXIT_USAGE, "reconstruct: --max-memory takes a size such as 1G, 512MiB, 1.5GB or 1500000000");
     }
     for (const char* option : {"--demo", "--tiles", "--snapshots", "--outliers", "--output-smoothed", "--drop-unused"}) {
         if (args.has(option)) return report_error(EXIT_USAGE, std::string("reconstruct: ") + option + " does not combine with --max-memory");
