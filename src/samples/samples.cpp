@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <vector>
 
 #include "core/pi.h"
 #include "core/splitmix64.h"
@@ -26,6 +26,67 @@ private:
 
 struct Point {
     double x, y, z;
+};
+
+// A grid cell's 21-bit coordinates packed into 63 bits.
+uint64_t cell_key(int64_t i, int64_t j, int64_t k) {
+    return (uint64_t(i) & 0x1fffff) << 42 | (uint64_t(j) & 0x1fffff) << 21 | (uint64_t(k) & 0x1fffff);
+}
+
+// Cell key -> a point's index, by open addressing: std::unordered_map's node per entry made thinning a
+// million-point sample take half a minute, nearly all of it in its lookups.
+class CellMap {
+public:
+    static constexpr uint32_t NONE = UINT32_MAX;
+
+    explicit CellMap(size_t expected) { rehash(expected); }
+
+    uint32_t find(uint64_t key) const {
+        for (size_t i = home(key);; i = (i + 1) & mask_) {
+            if (keys_[i] == key) return values_[i];
+            if (keys_[i] == EMPTY) return NONE;
+        }
+    }
+
+    // The value of `key`, which is entered with NONE if it is not there yet.
+    uint32_t& operator[](uint64_t key) {
+        if (2 * (count_ + 1) > keys_.size()) rehash(keys_.size());
+        size_t i = home(key);
+        for (; keys_[i] != key; i = (i + 1) & mask_) {
+            if (keys_[i] == EMPTY) {
+                keys_[i] = key;
+                ++count_;
+                break;
+            }
+        }
+        return values_[i];
+    }
+
+private:
+    static constexpr uint64_t EMPTY = ~uint64_t(0);  // no cell key: they use 63 bits
+
+    size_t home(uint64_t key) const { return size_t((key * 0x9e3779b97f4a7c15ull) >> shift_); }
+
+    // Room for twice `entries`, every entry moved over.
+    void rehash(size_t entries) {
+        std::vector<uint64_t> keys(std::move(keys_));
+        std::vector<uint32_t> values(std::move(values_));
+        int bits = 4;
+        while ((size_t(1) << bits) < 2 * entries) ++bits;
+        keys_.assign(size_t(1) << bits, EMPTY);
+        values_.assign(keys_.size(), NONE);
+        mask_ = keys_.size() - 1;
+        shift_ = 64 - bits;
+        count_ = 0;
+        for (size_t i = 0; i < keys.size(); ++i) {
+            if (keys[i] != EMPTY) (*this)[keys[i]] = values[i];
+        }
+    }
+
+    std::vector<uint64_t> keys_;
+    std::vector<uint32_t> values_;
+    size_t mask_ = 0, count_ = 0;
+    int shift_ = 0;
 };
 
 Point on_unit_sphere(Random& random) {
@@ -141,38 +202,34 @@ std::vector<Point> thin(Shape shape, const std::vector<Point>& raw, double base_
     double largest = 1;
     for (const Point& p : raw) largest = std::max(largest, relative_spacing(shape, p));
     const double spacing = base_spacing * largest;  // the grid cell: no conflict reaches past a neighbour cell
-    std::unordered_map<uint64_t, uint32_t> first_in_cell;
+    CellMap first_in_cell(raw.size() / 4);
     std::vector<uint32_t> next_in_cell;
     std::vector<Point> kept;
-    auto cell_key = [](int64_t i, int64_t j, int64_t k) {
-        return (uint64_t(i) & 0x1fffff) << 42 | (uint64_t(j) & 0x1fffff) << 21 | (uint64_t(k) & 0x1fffff);
-    };
     for (const Point& p : raw) {
         const int64_t ci = int64_t(std::floor(p.x / spacing)), cj = int64_t(std::floor(p.y / spacing)),
                       ck = int64_t(std::floor(p.z / spacing));
-        bool too_close = false;
+        const double needed = base_spacing * relative_spacing(shape, p);
+        const auto near_one_in = [&](int64_t i, int64_t j, int64_t k) {
+            for (uint32_t q = first_in_cell.find(cell_key(i, j, k)); q != CellMap::NONE; q = next_in_cell[q]) {
+                const Point& o = kept[q];
+                const double dx = o.x - p.x, dy = o.y - p.y, dz = o.z - p.z;
+                if (dx * dx + dy * dy + dz * dz < needed * needed) return true;
+            }
+            return false;
+        };
+        // The point's own cell first: most points are turned away, and mostly by a point there.
+        bool too_close = near_one_in(ci, cj, ck);
         for (int64_t i = ci - 1; i <= ci + 1 && !too_close; ++i) {
             for (int64_t j = cj - 1; j <= cj + 1 && !too_close; ++j) {
                 for (int64_t k = ck - 1; k <= ck + 1 && !too_close; ++k) {
-                    auto found = first_in_cell.find(cell_key(i, j, k));
-                    for (uint32_t q = found == first_in_cell.end() ? UINT32_MAX : found->second; q != UINT32_MAX;
-                         q = next_in_cell[q]) {
-                        const Point& o = kept[q];
-                        const double dx = o.x - p.x, dy = o.y - p.y, dz = o.z - p.z;
-                        const double needed = base_spacing * relative_spacing(shape, p);
-                        if (dx * dx + dy * dy + dz * dz < needed * needed) {
-                            too_close = true;
-                            break;
-                        }
-                    }
+                    too_close = (i != ci || j != cj || k != ck) && near_one_in(i, j, k);
                 }
             }
         }
         if (too_close) continue;
-        const uint64_t key = cell_key(ci, cj, ck);
-        auto head = first_in_cell.find(key);
-        next_in_cell.push_back(head == first_in_cell.end() ? UINT32_MAX : head->second);
-        first_in_cell[key] = uint32_t(kept.size());
+        uint32_t& head = first_in_cell[cell_key(ci, cj, ck)];
+        next_in_cell.push_back(head);
+        head = uint32_t(kept.size());
         kept.push_back(p);
     }
     return kept;
@@ -199,7 +256,7 @@ std::vector<Point> cluster(const std::vector<Point>& raw, double base, double de
         top = std::max(top, p.z);
     }
     const double height = top - bottom, half_log = 0.5 * std::log(density_ratio);
-    std::unordered_map<uint64_t, bool> taken;
+    CellMap taken(raw.size() / 4);
     std::vector<Point> kept;
     for (const Point& p : raw) {
         const double t = (p.z - bottom) / height, growth = std::exp(half_log * t);
@@ -207,8 +264,10 @@ std::vector<Point> cluster(const std::vector<Point>& raw, double base, double de
         const double z_cells = half_log > 0 ? height * (1 - 1 / growth) / (half_log * base) : (p.z - bottom) / base;
         const int64_t i = int64_t(std::floor(p.x / (base * growth * stretch))), j = int64_t(std::floor(p.y / (base * growth))),
                       k = int64_t(std::floor(z_cells));
-        const uint64_t key = (uint64_t(i) & 0x1fffff) << 42 | (uint64_t(j) & 0x1fffff) << 21 | (uint64_t(k) & 0x1fffff);
-        if (taken.emplace(key, true).second) kept.push_back(p);
+        uint32_t& first = taken[cell_key(i, j, k)];
+        if (first != CellMap::NONE) continue;
+        first = uint32_t(kept.size());
+        kept.push_back(p);
     }
     return kept;
 }
