@@ -465,13 +465,18 @@ def _stats_of(stats):
     return {name: getattr(stats, name) for name, _ in _capi.dbrg_stats._fields_ if name != "struct_size"}
 
 
-def _stats_dict(lib, handle):
+def _read_stats(lib, copy, handle):
+    """The dbrg_stats that `copy` (lib.dbrg_mesh_stats or lib.dbrg_tile_mesh_stats) gives of `handle`."""
     stats = _capi.dbrg_stats()
     stats.struct_size = ctypes.sizeof(stats)
-    status = lib.dbrg_mesh_stats(handle, ctypes.byref(stats))
+    status = copy(handle, ctypes.byref(stats))
     if status != _OK:
-        raise _error(lib, status, b"dbrg_mesh_stats failed")
-    return _stats_of(stats)
+        raise _error(lib, status, b"the call's statistics could not be copied")
+    return stats
+
+
+def _stats_dict(lib, handle):
+    return _stats_of(_read_stats(lib, lib.dbrg_mesh_stats, handle))
 
 
 def _pointer(array, c_type):

@@ -25,7 +25,7 @@ import warnings
 import numpy as np
 
 from . import _capi
-from . import _error, _mesh, _params, _point_array, _stats_of, library, reconstruct as _reconstruct_one
+from . import _error, _mesh, _params, _point_array, _read_stats, _stats_of, library, reconstruct as _reconstruct_one
 
 __all__ = ["reconstruct", "plan", "Plan", "local_cluster"]
 
@@ -127,12 +127,7 @@ def _tile_result(lib, status, handle, index_type):
 def _piece_stats(lib, handle):
     """The statistics of a tile's or a stitch's call as the bytes of a dbrg_stats, for the assembly to add
     up (dbrg_stats_add_piece)."""
-    stats = _capi.dbrg_stats()
-    stats.struct_size = ctypes.sizeof(stats)
-    status = lib.dbrg_tile_mesh_stats(handle, ctypes.byref(stats))
-    if status != _OK:
-        raise _error(lib, status, b"dbrg_tile_mesh_stats failed")
-    return bytes(stats)
+    return bytes(_read_stats(lib, lib.dbrg_tile_mesh_stats, handle))
 
 
 def _ids(pointer, count, index_type):
@@ -352,14 +347,11 @@ def _stitch_half(client, array, faces, outliers, cut, walls, options, progress):
 def _added_up(lib, handle, pieces):
     """dbrg_mesh_stats of the assembly with every piece's added (dbrg_stats_add_piece), as the C loop adds
     its own: a dbrg_stats."""
-    total = _capi.dbrg_stats()
-    total.struct_size = ctypes.sizeof(total)
-    status = lib.dbrg_mesh_stats(handle, ctypes.byref(total))
+    total = _read_stats(lib, lib.dbrg_mesh_stats, handle)
     for piece in pieces:
-        if status == _OK:
-            status = lib.dbrg_stats_add_piece(ctypes.byref(total), ctypes.byref(_capi.dbrg_stats.from_buffer_copy(piece)))
-    if status != _OK:
-        raise _error(lib, status, b"the pieces' statistics could not be added up")
+        status = lib.dbrg_stats_add_piece(ctypes.byref(total), ctypes.byref(_capi.dbrg_stats.from_buffer_copy(piece)))
+        if status != _OK:
+            raise _error(lib, status, b"a piece's statistics could not be added")
     return total
 
 
