@@ -1,5 +1,6 @@
 // The C ABI boundary: argument checks, status codes and result objects. The only file with extern "C".
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -598,11 +599,18 @@ DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats
 }
 
 DBRG_API dbrg_status dbrg_stats_add_piece(dbrg_stats* total, const dbrg_stats* piece) {
-    if (!total || !piece || total->struct_size < sizeof(dbrg_stats) || piece->struct_size < sizeof(dbrg_stats)) {
+    // Every caller has the fields of 0.5.0, which brought this function; a caller's struct may be shorter or
+    // longer than this library's, and only what both hold is read and written.
+    constexpr size_t FIRST_SIZE = offsetof(dbrg_stats, points_inserted) + sizeof(uint32_t);
+    if (!total || !piece || total->struct_size < FIRST_SIZE || piece->struct_size < FIRST_SIZE) {
         return DBRG_ERR_INVALID_ARGUMENT;
     }
-    add_piece_stats(*piece, *total);
-    total->tile_peak_bytes = std::max(total->tile_peak_bytes, piece->peak_bytes);
+    dbrg_stats whole{}, part{};
+    memcpy(&whole, total, std::min(total->struct_size, sizeof whole));
+    memcpy(&part, piece, std::min(piece->struct_size, sizeof part));
+    add_piece_stats(part, whole);
+    whole.tile_peak_bytes = std::max(whole.tile_peak_bytes, part.peak_bytes);
+    memcpy(total, &whole, std::min(total->struct_size, sizeof whole));
     return DBRG_OK;
 }
 

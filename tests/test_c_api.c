@@ -441,8 +441,26 @@ static void test_stats_add_piece(void) {
     CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_OK && total.noise_level == 0.3 && total.tetrahedra == 9);
     CHECK(dbrg_stats_add_piece(NULL, &piece) == DBRG_ERR_INVALID_ARGUMENT);
     CHECK(dbrg_stats_add_piece(&total, NULL) == DBRG_ERR_INVALID_ARGUMENT);
+    /* Counts stop at their largest value. */
+    piece.tetrahedra = 0xfffffffau; /* 9 + this passes 2^32 */
+    CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_OK && total.tetrahedra == 0xffffffffu);
+    /* A caller of 0.5.0 has every field up to points_inserted, and nothing past its size is written. */
+    {
+        struct {
+            dbrg_stats stats;
+            unsigned char after[16];
+        } shorter;
+        memset(&shorter, 0xab, sizeof shorter);
+        memset(&shorter.stats, 0, offsetof(dbrg_stats, points_inserted) + sizeof(uint32_t));
+        shorter.stats.struct_size = offsetof(dbrg_stats, points_inserted) + sizeof(uint32_t);
+        piece.tetrahedra = 4;
+        piece.points_inserted = 6;
+        CHECK(dbrg_stats_add_piece(&shorter.stats, &piece) == DBRG_OK);
+        CHECK(shorter.stats.tetrahedra == 4 && shorter.stats.points_inserted == 6);
+        CHECK(((const unsigned char*)&shorter)[shorter.stats.struct_size] == 0xab && shorter.after[0] == 0xab);
+    }
     piece.struct_size = offsetof(dbrg_stats, points_inserted);
-    CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_ERR_INVALID_ARGUMENT && total.tetrahedra == 9);
+    CHECK(dbrg_stats_add_piece(&total, &piece) == DBRG_ERR_INVALID_ARGUMENT && total.tetrahedra == 0xffffffffu);
 }
 
 static void test_tiles(void) {

@@ -601,9 +601,10 @@ DBRG_API dbrg_status dbrg_tile_mesh_stats(const dbrg_tile_mesh* mesh, dbrg_stats
  * and seconds add up, noise_level and smoothing_iterations become the larger of the two, tile_peak_bytes the
  * larger of total's and the piece's peak_bytes; the figures of the whole mesh (points, triangles, loops,
  * components, outliers, tiles) stay total's. A driver that runs the pieces elsewhere calls it once a piece
- * on dbrg_mesh_stats of its dbrg_mesh_assemble result to report what the C loop reports. Returns
- * DBRG_ERR_INVALID_ARGUMENT when either is NULL or its struct_size is below this version's
- * sizeof(dbrg_stats). */
+ * on dbrg_mesh_stats of its dbrg_mesh_assemble result to report what the C loop reports. Counts stop at
+ * their type's largest value rather than wrap. Fields beyond either struct_size are neither read nor
+ * written. Returns DBRG_ERR_INVALID_ARGUMENT when either is NULL or its struct_size does not reach
+ * points_inserted (the fields of 0.5.0). */
 DBRG_API dbrg_status dbrg_stats_add_piece(dbrg_stats* total, const dbrg_stats* piece);
 
 /* ------------------------------------------------------------------------------------------------

@@ -137,6 +137,8 @@ bool parse_size(const std::string& text, uint64_t& bytes) {
             break;
         }
     }
+    // A decimal number only: strtod would also read "0x1b" (hexadecimal) or "inf".
+    if (number.find_first_not_of("0123456789.e+-") != std::string::npos) return false;
     double value;
     if (!parse_number(number, value) || !(value > 0) || value * factor >= 18446744073709551615.0) return false;
     bytes = uint64_t(value * factor);

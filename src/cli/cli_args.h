@@ -45,9 +45,10 @@ bool parse_number(const std::string& text, double& value);
 // A whole number in 0 .. 2^32 - 1, the whole text; false otherwise.
 bool parse_count(const std::string& text, uint32_t& value);
 
-// A size in bytes: a positive number with an optional unit, in any letter case: K, M, G, T and KiB, MiB,
-// GiB, TiB are powers of 1024 (1K is 1024 bytes), KB, MB, GB, TB powers of 1000 (as Dask reads a memory
-// limit), B bytes; the whole text ("1.5G", "2GiB"); false otherwise.
+// A size in bytes: a positive decimal number with an optional unit, in any letter case: K, M, G, T and
+// KiB, MiB, GiB, TiB are powers of 1024 (1K is 1024 bytes), KB, MB, GB, TB powers of 1000 (as Dask reads
+// them; Dask reads the single letters as powers of 1000 too), B bytes; the whole text ("1.5G", "2GiB"),
+// the bytes rounded down; false otherwise.
 bool parse_size(const std::string& text, uint64_t& bytes);
 
 // Writes `text` to the file at `path` (a failed write leaves the old file untouched), or to stdout when

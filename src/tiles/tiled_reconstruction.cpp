@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "core/status.h"
 #include "pipeline.h"
@@ -204,32 +205,42 @@ dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, c
 
 } // namespace
 
+namespace {
+
+// total + piece, or the type's largest value where that would wrap (a run of billions of points).
+template <class Count>
+void add_counts(Count& total, Count piece) {
+    total = total > std::numeric_limits<Count>::max() - piece ? std::numeric_limits<Count>::max() : total + piece;
+}
+
+} // namespace
+
 void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total) {
-    total.tetrahedra += piece.tetrahedra;
-    total.candidates_evaluated += piece.candidates_evaluated;
-    total.rejected_edge_nonmanifold += piece.rejected_edge_nonmanifold;
-    total.rejected_orientation += piece.rejected_orientation;
-    total.rejected_bowtie += piece.rejected_bowtie;
-    total.rejected_dihedral += piece.rejected_dihedral;
-    total.rejected_boundary += piece.rejected_boundary;
-    total.holes_found += piece.holes_found;
-    total.holes_filled += piece.holes_filled;
-    total.holes_left_open += piece.holes_left_open;
-    total.hole_triangles_delaunay += piece.hole_triangles_delaunay;
-    total.hole_triangles_added += piece.hole_triangles_added;
-    total.hole_triangles_removed += piece.hole_triangles_removed;
-    total.handles_removed += piece.handles_removed;
-    total.points_inserted += piece.points_inserted;
-    total.pinch_faces_removed += piece.pinch_faces_removed;
-    total.predicate_calls += piece.predicate_calls;
-    total.predicate_filter_failures += piece.predicate_filter_failures;
-    total.predicate_perturbations += piece.predicate_perturbations;
+    add_counts(total.tetrahedra, piece.tetrahedra);
+    add_counts(total.candidates_evaluated, piece.candidates_evaluated);
+    add_counts(total.rejected_edge_nonmanifold, piece.rejected_edge_nonmanifold);
+    add_counts(total.rejected_orientation, piece.rejected_orientation);
+    add_counts(total.rejected_bowtie, piece.rejected_bowtie);
+    add_counts(total.rejected_dihedral, piece.rejected_dihedral);
+    add_counts(total.rejected_boundary, piece.rejected_boundary);
+    add_counts(total.holes_found, piece.holes_found);
+    add_counts(total.holes_filled, piece.holes_filled);
+    add_counts(total.holes_left_open, piece.holes_left_open);
+    add_counts(total.hole_triangles_delaunay, piece.hole_triangles_delaunay);
+    add_counts(total.hole_triangles_added, piece.hole_triangles_added);
+    add_counts(total.hole_triangles_removed, piece.hole_triangles_removed);
+    add_counts(total.handles_removed, piece.handles_removed);
+    add_counts(total.points_inserted, piece.points_inserted);
+    add_counts(total.pinch_faces_removed, piece.pinch_faces_removed);
+    add_counts(total.predicate_calls, piece.predicate_calls);
+    add_counts(total.predicate_filter_failures, piece.predicate_filter_failures);
+    add_counts(total.predicate_perturbations, piece.predicate_perturbations);
     total.seconds_sort += piece.seconds_sort;
     total.seconds_delaunay += piece.seconds_delaunay;
     total.seconds_grow += piece.seconds_grow;
     total.seconds_fill_holes += piece.seconds_fill_holes;
-    total.near_duplicates_merged += piece.near_duplicates_merged;
-    total.points_smoothed += piece.points_smoothed;
+    add_counts(total.near_duplicates_merged, piece.near_duplicates_merged);
+    add_counts(total.points_smoothed, piece.points_smoothed);
     total.smoothing_iterations = std::max(total.smoothing_iterations, piece.smoothing_iterations);
     total.noise_level = std::max(total.noise_level, piece.noise_level);
     total.seconds_clean += piece.seconds_clean;
