@@ -1,5 +1,6 @@
 // Tests of the point-cleaning stage's neighbour search and local fit: the k nearest neighbours against brute
-// force (random points, a lattice full of equal distances) and against the search from the root, the same
+// force (random points, a lattice full of equal distances) and against the search from the root (one query
+// at a time and a leaf's queries together), the same
 // answer on one thread and two, allocation failure and cancelling; the local quadric fit on exact surfaces,
 // lines and single spots, in any frame.
 #include <doctest/doctest.h>
@@ -117,6 +118,46 @@ TEST_CASE("k nearest neighbours: the search from the query's leaf gives what one
                 REQUIRE(index.nearest(query, k, fast, &wrong) == k);
                 CHECK(std::equal(fast, fast + k, root));
             }
+        }
+    }
+}
+
+// Dense clumps among sparse points: a leaf's batch, sized by the leaf before it, holds too many points near a
+// clump and too few (so that queries are searched alone) past one.
+std::vector<double> clumps_among_sparse_points(uint64_t seed) {
+    Random random(seed);
+    std::vector<double> xyz = random_cube(1500, seed);
+    for (int clump = 0; clump < 6; ++clump) {
+        const double centre[3] = {random.uniform(), random.uniform(), random.uniform()};
+        for (int i = 0; i < 400; ++i) {
+            for (int a = 0; a < 3; ++a) xyz.push_back(centre[a] + 1e-3 * random.normal());
+        }
+    }
+    return xyz;
+}
+
+TEST_CASE("k nearest neighbours of every point, a leaf at a time, are the root search's") {
+    for (const std::vector<double>& xyz : {random_sphere(3000, 8), lattice(12, 0.0, 0), cube_surface_lattice(14),
+                                           clumps_among_sparse_points(9)}) {
+        const uint32_t n = uint32_t(xyz.size() / 3);
+        for (uint32_t wanted : {1u, 16u, 32u}) {
+            CAPTURE(n);
+            CAPTURE(wanted);
+            Context context(test_params());
+            NeighbourIndex index(context.memory);
+            REQUIRE(index.build(xyz.data(), n, ProgressSpan(context, DBRG_STAGE_CLEAN)) == DBRG_OK);
+            Array<uint32_t> neighbours(context.memory);
+            uint32_t k = 0;
+            REQUIRE(find_nearest_neighbours(index, wanted, ProgressSpan(context, DBRG_STAGE_CLEAN), k, neighbours) ==
+                    DBRG_OK);
+            REQUIRE(k == wanted);
+            uint32_t mismatches = 0;
+            for (uint32_t query = 0; query < n; ++query) {
+                uint32_t root[MAX_NEIGHBOURS];
+                REQUIRE(index.nearest_from_root(query, k, root) == k);
+                mismatches += !std::equal(root, root + k, neighbours.data() + size_t(k) * query);
+            }
+            CHECK(mismatches == 0);
         }
     }
 }

@@ -22,6 +22,12 @@ constexpr uint32_t LEAF_POINTS = 16;
 // Queries searched from the root alone after one with a tie at the k-th distance (on a grid nearly all have
 // one, and the search from the query's leaf is then wasted).
 constexpr uint32_t ROOT_SEARCHES_AFTER_TIE = 8;
+// The most points one leaf's queries are compared with together; a leaf whose surroundings hold more has its
+// queries searched one by one.
+constexpr uint32_t BATCH_POINTS = 512;
+// A leaf's queries are compared with the points within this many times the farthest (k + 1)-th neighbour
+// of the previous leaf's queries: enough that nearly every query's k + 1 nearest are among them.
+constexpr double BATCH_REACH = 1.1;
 
 double squared_distance(const double* a, const double* b) {
     const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -34,6 +40,18 @@ double squared_distance_to_box(const double* p, const Box& box) {
     for (int a = 0; a < 3; ++a) {
         // At most one of the two is positive (lo <= hi), so this is the one that is, or 0.
         const double d = std::max(std::max(box.lo[a] - p[a], p[a] - box.hi[a]), 0.0);
+        sum += d * d;
+    }
+    return sum;
+}
+
+// The squared distance between the nearest points of two boxes. Rounding is monotone and the sums run in
+// squared_distance's order, so it is never above the squared_distance of a point of one from a point of the other.
+template <class Box>
+double squared_gap(const Box& a, const Box& b) {
+    double sum = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        const double d = std::max(std::max(a.lo[axis] - b.hi[axis], b.lo[axis] - a.hi[axis]), 0.0);
         sum += d * d;
     }
     return sum;
@@ -108,6 +126,13 @@ struct NeighbourIndex::Gathered {
             }
         }
     }
+};
+
+// The points near one leaf, their coordinates by axis.
+struct NeighbourIndex::Batch {
+    uint32_t size = 0;
+    double x[BATCH_POINTS], y[BATCH_POINTS], z[BATCH_POINTS];
+    uint32_t index[BATCH_POINTS];
 };
 
 size_t NeighbourIndex::range_begin(uint32_t node, int level) const {
@@ -294,6 +319,101 @@ uint32_t NeighbourIndex::nearest_from_root(uint32_t query, uint32_t k, uint32_t*
     return found.size;
 }
 
+// Lists in `batch` the points of every leaf whose box is nearer than the square root of `bound` to `box`: every
+// point nearer than that to a point in `box` among them. Returns false if they are more than fit.
+bool NeighbourIndex::gather(const Box& box, double bound, Batch& batch) const {
+    const uint32_t leaves = 1u << depth_;
+    uint32_t stack[64], top = 0;
+    stack[top++] = 1;
+    batch.size = 0;
+    while (top > 0) {
+        const uint32_t node = stack[--top];
+        if (!(squared_gap(box, boxes_[node]) < bound)) continue;
+        if (node < leaves) {
+            stack[top++] = 2 * node + 1;
+            stack[top++] = 2 * node;
+            continue;
+        }
+        const uint32_t begin = leaf_begin_[node - leaves], n = leaf_begin_[node - leaves + 1] - begin;
+        if (batch.size + n > BATCH_POINTS) return false;
+        const double *x = leaf_xyz_.data() + begin, *y = x + count_, *z = y + count_;
+        for (uint32_t j = 0; j < n; ++j) {
+            batch.x[batch.size + j] = x[j];
+            batch.y[batch.size + j] = y[j];
+            batch.z[batch.size + j] = z[j];
+            batch.index[batch.size + j] = order_[begin + j];
+        }
+        batch.size += n;
+    }
+    return true;
+}
+
+// A leaf's queries are compared with the points around the leaf, gathered once for all of them (a search of
+// the tree for each query costs more, mostly in mispredicted branches). A query whose k + 1 nearest are not
+// all among them is searched alone; one with a tie at the k-th distance from the root, as `nearest` does.
+void NeighbourIndex::nearest_of_leaves(uint32_t first, uint32_t last, uint32_t k, uint32_t* out) const {
+    k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    if (k == 0) return;
+    const uint32_t leaves = 1u << depth_;
+    Batch batch;
+    NearestHint hint;
+    double reach = INFINITY;
+    uint32_t from_root = 0;
+    for (uint32_t leaf = first; leaf < last; ++leaf) {
+        const uint32_t begin = leaf_begin_[leaf], end = leaf_begin_[leaf + 1];
+        // Gathered for the first query that is not searched from the root.
+        enum { NOT_YET, GATHERED, TOO_MANY } batch_state = k < count_ - 1 ? NOT_YET : TOO_MANY;
+        double farthest = 0;
+        for (uint32_t position = begin; position < end; ++position) {
+            const uint32_t query = order_[position];
+            uint32_t* row = out + size_t(k) * query;
+            if (from_root > 0) {
+                --from_root;
+                nearest_from_root(query, k, row);
+                continue;
+            }
+            if (batch_state == NOT_YET) {
+                batch_state = gather(boxes_[leaves + leaf], reach * reach, batch) ? GATHERED : TOO_MANY;
+            }
+            if (batch_state == GATHERED) {
+                const double* q = xyz_ + 3 * size_t(query);
+                double distance[BATCH_POINTS];
+                for (uint32_t j = 0; j < batch.size; ++j) {
+                    const double dx = q[0] - batch.x[j], dy = q[1] - batch.y[j], dz = q[2] - batch.z[j];
+                    distance[j] = dx * dx + dy * dy + dz * dz;
+                }
+                Gathered found;
+                found.wanted = k + 1;
+                found.bound = reach * reach;
+                // Those within the reach listed without a branch, then offered.
+                uint32_t near[BATCH_POINTS], m = 0;
+                for (uint32_t j = 0; j < batch.size; ++j) {
+                    near[m] = j;
+                    m += distance[j] < found.bound;
+                }
+                for (uint32_t t = 0; t < m; ++t) {
+                    const uint32_t p = batch.index[near[t]];
+                    if (p != query) found.offer(distance[near[t]], p);
+                }
+                if (found.size > k) {
+                    if (!(found.distance[k] < found.distance[k + 1])) {
+                        from_root = ROOT_SEARCHES_AFTER_TIE;
+                        nearest_from_root(query, k, row);
+                        continue;
+                    }
+                    found.settle_ties();
+                    for (uint32_t j = 0; j < k; ++j) row[j] = found.index[j + 1];
+                    farthest = std::max(farthest, found.distance[k + 1]);
+                    continue;
+                }
+            }
+            nearest(query, k, row, &hint);
+            if (hint.query == query && hint.from_root == 0) farthest = std::max(farthest, hint.reach * hint.reach);
+        }
+        if (farthest > 0) reach = BATCH_REACH * sqrt(farthest);
+    }
+}
+
 dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted, const ProgressSpan& progress,
                                     uint32_t& k, Array<uint32_t>& neighbours) {
     Context& context = progress.context();
@@ -304,15 +424,13 @@ dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted
     if (!neighbours.resize_for_overwrite(size_t(k) * count)) return context.fail_out_of_memory();
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size.
-    const size_t step = step_items(parts) / 16;
-    for (size_t first = 0; first < count; first += step) {
-        DBRG_PROPAGATE(progress.report(first, count));
-        const size_t last = std::min(size_t(count), first + step);
+    const uint32_t leaves = index.leaf_count();
+    const size_t step = std::max(size_t(1), step_items(parts) / 16 * leaves / count);
+    for (size_t first = 0; first < leaves; first += step) {
+        DBRG_PROPAGATE(progress.report(first, leaves));
+        const size_t last = std::min(size_t(leaves), first + step);
         for_each_slice(last - first, parts, [&](size_t begin, size_t end) {
-            NearestHint hint;
-            for (size_t i = first + begin; i < first + end; ++i) {
-                index.nearest(static_cast<uint32_t>(i), k, neighbours.data() + size_t(k) * i, &hint);
-            }
+            index.nearest_of_leaves(uint32_t(first + begin), uint32_t(first + end), k, neighbours.data());
         });
     }
     return progress.report(1, 1);

@@ -47,6 +47,12 @@ public:
     // among the equal ones `nearest` gives.
     uint32_t nearest_from_root(uint32_t query, uint32_t k, uint32_t* out) const;
 
+    // The tree's leaves, numbered from 0; leaves with numbers close together hold points close together.
+    uint32_t leaf_count() const { return count_ > 0 ? 1u << depth_ : 0; }
+    // Writes the min(k, count - 1) nearest neighbours of every point p of leaves [first, last) to
+    // out + k * p, as `nearest` gives them. Safe to call from several threads on disjoint ranges.
+    void nearest_of_leaves(uint32_t first, uint32_t last, uint32_t k, uint32_t* out) const;
+
     uint32_t size() const { return count_; }
 
 private:
@@ -60,7 +66,9 @@ private:
     };
     struct Candidates;
     struct Gathered;
+    struct Batch;
     size_t range_begin(uint32_t node, int level) const;
+    bool gather(const Box& box, double bound, Batch& batch) const;
     template <class Found>
     void search(const double* q, uint32_t query, uint32_t node, Found& found) const;
     void split_level(int level, uint32_t parts, TreePoint* points) const;
