@@ -1,8 +1,7 @@
 // Tests of the point-cleaning stage's neighbour search and local fit: the k nearest neighbours against brute
 // force (random points, a lattice full of equal distances) and against the search from the root (one query
-// at a time and a leaf's queries together), the same
-// answer on one thread and two, allocation failure and cancelling; the local quadric fit on exact surfaces,
-// lines and single spots, in any frame.
+// at a time and a leaf's queries together), the same answer on one thread and two, allocation failure and
+// cancelling; the local quadric fit on exact surfaces, lines and single spots, in any frame.
 #include <doctest/doctest.h>
 
 #include <stdint.h>
@@ -125,7 +124,7 @@ TEST_CASE("k nearest neighbours: the search from the query's leaf gives what one
 // Dense clumps among sparse points: a leaf's batch, sized by the leaf before it, holds too many points near a
 // clump and too few (so that queries are searched alone) past one.
 std::vector<double> clumps_among_sparse_points(uint64_t seed) {
-    Random random(seed);
+    Random random(seed + 1);
     std::vector<double> xyz = random_cube(1500, seed);
     for (int clump = 0; clump < 6; ++clump) {
         const double centre[3] = {random.uniform(), random.uniform(), random.uniform()};
@@ -137,8 +136,9 @@ std::vector<double> clumps_among_sparse_points(uint64_t seed) {
 }
 
 TEST_CASE("k nearest neighbours of every point, a leaf at a time, are the root search's") {
+    // Ten points make a tree of one leaf.
     for (const std::vector<double>& xyz : {random_sphere(3000, 8), lattice(12, 0.0, 0), cube_surface_lattice(14),
-                                           clumps_among_sparse_points(9)}) {
+                                           clumps_among_sparse_points(9), random_cube(10, 11)}) {
         const uint32_t n = uint32_t(xyz.size() / 3);
         for (uint32_t wanted : {1u, 16u, 32u}) {
             CAPTURE(n);
@@ -150,7 +150,7 @@ TEST_CASE("k nearest neighbours of every point, a leaf at a time, are the root s
             uint32_t k = 0;
             REQUIRE(find_nearest_neighbours(index, wanted, ProgressSpan(context, DBRG_STAGE_CLEAN), k, neighbours) ==
                     DBRG_OK);
-            REQUIRE(k == wanted);
+            REQUIRE(k == std::min(wanted, n - 1));
             uint32_t mismatches = 0;
             for (uint32_t query = 0; query < n; ++query) {
                 uint32_t root[MAX_NEIGHBOURS];

@@ -26,7 +26,7 @@ constexpr uint32_t ROOT_SEARCHES_AFTER_TIE = 8;
 // queries searched one by one.
 constexpr uint32_t BATCH_POINTS = 512;
 // A leaf's queries are compared with the points within this many times the farthest (k + 1)-th neighbour
-// of the previous leaf's queries: enough that nearly every query's k + 1 nearest are among them.
+// found for the queries of the leaf before it: enough that nearly every query's k + 1 nearest are among them.
 constexpr double BATCH_REACH = 1.1;
 
 double squared_distance(const double* a, const double* b) {
@@ -118,15 +118,44 @@ struct NeighbourIndex::Gathered {
         index[at] = i;
         if (size == wanted) bound = distance[wanted];
     }
-    // Puts equal distances in the order of their indices.
-    void settle_ties() {
+    // Once k + 1 are found: writes the k nearest to `out` and returns true, unless the k-th and the (k + 1)-th
+    // are at one distance. Which of the equal points are among the k is then the root search's choice, and
+    // this returns false.
+    bool take_nearest(uint32_t k, uint32_t* out) {
+        if (!(distance[k] < distance[k + 1])) return false;
+        // Equal distances in the order of their indices.
         for (uint32_t j = 2; j <= size; ++j) {
             for (uint32_t at = j; at > 1 && distance[at - 1] == distance[at] && index[at - 1] > index[at]; --at) {
                 std::swap(index[at - 1], index[at]);
             }
         }
+        for (uint32_t j = 0; j < k; ++j) out[j] = index[j + 1];
+        return true;
     }
 };
+
+// Offers to `found` the n points (at most MAX) numbered index[j] at (x[j], y[j], z[j]) that are not beyond its
+// bound, the query itself left out: all their distances first, a loop the compiler can vectorize (the same
+// sums as squared_distance's, so the same values), then those within the bound listed without a branch (about
+// which way it goes there is no telling), then offered.
+template <uint32_t MAX, class Found>
+void offer_points(const double* q, uint32_t query, const double* x, const double* y, const double* z,
+                  const uint32_t* index, uint32_t n, Found& found) {
+    double distance[MAX];
+    for (uint32_t j = 0; j < n; ++j) {
+        const double dx = q[0] - x[j], dy = q[1] - y[j], dz = q[2] - z[j];
+        distance[j] = dx * dx + dy * dy + dz * dz;
+    }
+    uint32_t near[MAX], m = 0;
+    for (uint32_t j = 0; j < n; ++j) {
+        near[m] = j;
+        m += !(distance[j] > found.bound);
+    }
+    for (uint32_t t = 0; t < m; ++t) {
+        const uint32_t p = index[near[t]];
+        if (p != query) found.offer(distance[near[t]], p);
+    }
+}
 
 // The points near one leaf, their coordinates by axis.
 struct NeighbourIndex::Batch {
@@ -223,25 +252,9 @@ void NeighbourIndex::search(const double* q, uint32_t query, uint32_t node, Foun
         if (node >= leaves) {
             const uint32_t leaf = node - leaves;
             const uint32_t begin = leaf_begin_[leaf], n = leaf_begin_[leaf + 1] - begin;
-            const double *x = leaf_xyz_.data() + begin, *y = x + count_, *z = y + count_;
-            // All the leaf's distances first, a loop the compiler can vectorize (the same sums as
-            // squared_distance's, so the same values).
-            double distance[LEAF_POINTS];
-            for (uint32_t j = 0; j < n; ++j) {
-                const double dx = q[0] - x[j], dy = q[1] - y[j], dz = q[2] - z[j];
-                distance[j] = dx * dx + dy * dy + dz * dz;
-            }
-            // Those not beyond the bound as the leaf begins, listed without a branch (about which way it goes
-            // there is no telling), then offered.
-            uint32_t near[LEAF_POINTS], m = 0;
-            for (uint32_t j = 0; j < n; ++j) {
-                near[m] = j;
-                m += !(distance[j] > found.bound);
-            }
-            for (uint32_t t = 0; t < m; ++t) {
-                const uint32_t p = order_[begin + near[t]];
-                if (p != query) found.offer(distance[near[t]], p);
-            }
+            const double* x = leaf_xyz_.data() + begin;
+            offer_points<LEAF_POINTS>(q, query, x, x + count_, x + 2 * size_t(count_), order_.data() + begin, n,
+                                      found);
         } else {
             const uint32_t left = 2 * node, right = left + 1;
             const double to_left = squared_distance_to_box(q, boxes_[left]);
@@ -262,7 +275,7 @@ void NeighbourIndex::search(const double* q, uint32_t query, uint32_t node, Foun
 }
 
 uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, NearestHint* hint) const {
-    k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    k = neighbours_for(k);
     if (k == 0) return 0;
     const double* q = xyz_ + 3 * size_t(query);
     // First the k + 1 nearest, from the query's own leaf outwards. When the (k + 1)-th is strictly farther than
@@ -297,22 +310,18 @@ uint32_t NeighbourIndex::nearest(uint32_t query, uint32_t k, uint32_t* out, Near
             gathered.size = 0;
             gathered.bound = INFINITY;
         }
-        const bool tied = !(gathered.distance[k] < gathered.distance[k + 1]);
+        const bool taken = gathered.take_nearest(k, out);
         if (hint != nullptr) {
-            *hint = NearestHint{query, k, sqrt(gathered.distance[k + 1]), tied ? ROOT_SEARCHES_AFTER_TIE : 0};
+            *hint = NearestHint{query, k, sqrt(gathered.distance[k + 1]), taken ? 0 : ROOT_SEARCHES_AFTER_TIE};
         }
-        if (!tied) {
-            gathered.settle_ties();
-            for (uint32_t j = 0; j < k; ++j) out[j] = gathered.index[j + 1];
-            return k;
-        }
+        if (taken) return k;
     }
     return nearest_from_root(query, k, out);
 }
 
 uint32_t NeighbourIndex::nearest_from_root(uint32_t query, uint32_t k, uint32_t* out) const {
     Candidates found;
-    found.k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    found.k = neighbours_for(k);
     if (found.k == 0) return 0;
     search(xyz_ + 3 * size_t(query), query, 1, found);
     for (uint32_t j = 0; j < found.size; ++j) out[j] = found.index[j];
@@ -352,63 +361,40 @@ bool NeighbourIndex::gather(const Box& box, double bound, Batch& batch) const {
 // the tree for each query costs more, mostly in mispredicted branches). A query whose k + 1 nearest are not
 // all among them is searched alone; one with a tie at the k-th distance from the root, as `nearest` does.
 void NeighbourIndex::nearest_of_leaves(uint32_t first, uint32_t last, uint32_t k, uint32_t* out) const {
-    k = std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
     if (k == 0) return;
     const uint32_t leaves = 1u << depth_;
     Batch batch;
     NearestHint hint;
     double reach = INFINITY;
-    uint32_t from_root = 0;
     for (uint32_t leaf = first; leaf < last; ++leaf) {
         const uint32_t begin = leaf_begin_[leaf], end = leaf_begin_[leaf + 1];
         // Gathered for the first query that is not searched from the root.
         enum { NOT_YET, GATHERED, TOO_MANY } batch_state = k < count_ - 1 ? NOT_YET : TOO_MANY;
-        double farthest = 0;
+        double farthest = 0;  // squared
         for (uint32_t position = begin; position < end; ++position) {
             const uint32_t query = order_[position];
             uint32_t* row = out + size_t(k) * query;
-            if (from_root > 0) {
-                --from_root;
-                nearest_from_root(query, k, row);
-                continue;
-            }
-            if (batch_state == NOT_YET) {
+            if (hint.from_root == 0 && batch_state == NOT_YET) {
                 batch_state = gather(boxes_[leaves + leaf], reach * reach, batch) ? GATHERED : TOO_MANY;
             }
-            if (batch_state == GATHERED) {
-                const double* q = xyz_ + 3 * size_t(query);
-                double distance[BATCH_POINTS];
-                for (uint32_t j = 0; j < batch.size; ++j) {
-                    const double dx = q[0] - batch.x[j], dy = q[1] - batch.y[j], dz = q[2] - batch.z[j];
-                    distance[j] = dx * dx + dy * dy + dz * dz;
-                }
+            if (hint.from_root == 0 && batch_state == GATHERED) {
                 Gathered found;
                 found.wanted = k + 1;
                 found.bound = reach * reach;
-                // Those within the reach listed without a branch, then offered.
-                uint32_t near[BATCH_POINTS], m = 0;
-                for (uint32_t j = 0; j < batch.size; ++j) {
-                    near[m] = j;
-                    m += distance[j] < found.bound;
-                }
-                for (uint32_t t = 0; t < m; ++t) {
-                    const uint32_t p = batch.index[near[t]];
-                    if (p != query) found.offer(distance[near[t]], p);
-                }
+                offer_points<BATCH_POINTS>(xyz_ + 3 * size_t(query), query, batch.x, batch.y, batch.z, batch.index,
+                                           batch.size, found);
                 if (found.size > k) {
-                    if (!(found.distance[k] < found.distance[k + 1])) {
-                        from_root = ROOT_SEARCHES_AFTER_TIE;
-                        nearest_from_root(query, k, row);
-                        continue;
-                    }
-                    found.settle_ties();
-                    for (uint32_t j = 0; j < k; ++j) row[j] = found.index[j + 1];
                     farthest = std::max(farthest, found.distance[k + 1]);
+                    if (!found.take_nearest(k, row)) {
+                        hint.from_root = ROOT_SEARCHES_AFTER_TIE;
+                        nearest_from_root(query, k, row);
+                    }
                     continue;
                 }
             }
+            // After a tie (`nearest` counts down the searches from the root), or too many points or too few near.
             nearest(query, k, row, &hint);
-            if (hint.query == query && hint.from_root == 0) farthest = std::max(farthest, hint.reach * hint.reach);
+            if (hint.query == query) farthest = std::max(farthest, hint.reach * hint.reach);
         }
         if (farthest > 0) reach = BATCH_REACH * sqrt(farthest);
     }
@@ -418,14 +404,14 @@ dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted
                                     uint32_t& k, Array<uint32_t>& neighbours) {
     Context& context = progress.context();
     const uint32_t count = index.size();
-    k = std::min(std::min(wanted, MAX_NEIGHBOURS), count > 0 ? count - 1 : 0);
+    k = index.neighbours_for(wanted);
     neighbours.clear();
     if (k == 0) return progress.report(1, 1);
     if (!neighbours.resize_for_overwrite(size_t(k) * count)) return context.fail_out_of_memory();
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
     // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size.
     const uint32_t leaves = index.leaf_count();
-    const size_t step = std::max(size_t(1), step_items(parts) / 16 * leaves / count);
+    const size_t step = size_t(std::max(uint64_t(1), uint64_t(step_items(parts) / 16) * leaves / count));
     for (size_t first = 0; first < leaves; first += step) {
         DBRG_PROPAGATE(progress.report(first, leaves));
         const size_t last = std::min(size_t(leaves), first + step);

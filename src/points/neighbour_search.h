@@ -3,6 +3,8 @@
 
 #include <stdint.h>
 
+#include <algorithm>
+
 #include "core/array.h"
 #include "core/context.h"
 #include "core/progress_span.h"
@@ -47,10 +49,14 @@ public:
     // among the equal ones `nearest` gives.
     uint32_t nearest_from_root(uint32_t query, uint32_t k, uint32_t* out) const;
 
+    // How many neighbours a search for k gives: min(k, MAX_NEIGHBOURS, size() - 1).
+    uint32_t neighbours_for(uint32_t k) const {
+        return std::min(std::min(k, MAX_NEIGHBOURS), count_ > 0 ? count_ - 1 : 0);
+    }
     // The tree's leaves, numbered from 0; leaves with numbers close together hold points close together.
     uint32_t leaf_count() const { return count_ > 0 ? 1u << depth_ : 0; }
-    // Writes the min(k, count - 1) nearest neighbours of every point p of leaves [first, last) to
-    // out + k * p, as `nearest` gives them. Safe to call from several threads on disjoint ranges.
+    // Writes the k nearest neighbours of every point p of leaves [first, last) to out + k * p, as `nearest`
+    // gives them; k must be neighbours_for(k). Safe to call from several threads on disjoint ranges.
     void nearest_of_leaves(uint32_t first, uint32_t last, uint32_t k, uint32_t* out) const;
 
     uint32_t size() const { return count_; }
