@@ -409,7 +409,8 @@ dbrg_status find_nearest_neighbours(const NeighbourIndex& index, uint32_t wanted
     if (k == 0) return progress.report(1, 1);
     if (!neighbours.resize_for_overwrite(size_t(k) * count)) return context.fail_out_of_memory();
     const uint32_t parts = part_count(context.params.threads, count, MIN_POINTS_PER_THREAD);
-    // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size.
+    // A search costs about as much as sorting a few dozen points: steps of a sixteenth of the usual size, in
+    // leaves (of count / leaves points each).
     const uint32_t leaves = index.leaf_count();
     const size_t step = size_t(std::max(uint64_t(1), uint64_t(step_items(parts) / 16) * leaves / count));
     for (size_t first = 0; first < leaves; first += step) {
