@@ -12,6 +12,7 @@
 #include "pipeline.h"
 #include "points/point_conditioning.h"
 #include "points/point_input.h"
+#include "points/spatial_sort.h"
 #include "delaunay/tetrahedralization.h"
 #include "holes/hole_filling.h"
 #include "surface/surface.h"
@@ -22,8 +23,10 @@ namespace dbrg {
 namespace {
 
 const uint32_t NOT_IN_STRIP = UINT32_MAX;
-// The stitches' share of DBRG_STAGE_FILL_HOLES's progress; the assembly's handle cut takes the rest.
+// The stitches' share of DBRG_STAGE_FILL_HOLES's progress; the assembly's numbering of the points and its
+// handle cut take the rest.
 constexpr double STITCH_PROGRESS = 0.9;
+constexpr double NUMBERING_PROGRESS = 0.92;
 
 // The axis along which the box of the points is longest.
 int longest_axis(const double* xyz, size_t count) {
@@ -374,8 +377,28 @@ dbrg_status stitch_seam(const double* xyz, size_t count, const uint32_t* faces, 
 
 dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Array<uint32_t>& outliers, Context& context,
                            SurfaceResult& result) {
-    DBRG_PROPAGATE(orient_triangles(mesh, xyz.data(), true, context));
+    // Every pass below goes from face to neighbouring face. The caller's points may come in any order (those
+    // of a shuffled cloud put a face's corners anywhere in memory), so they are numbered along the Hilbert
+    // curve first, as a single call numbers its own, and the output hands the caller's numbering back.
     const uint32_t count = static_cast<uint32_t>(xyz.size() / 3);
+    ConditionedPoints numbered(context.memory);
+    DBRG_PROPAGATE(hilbert_order(xyz.data(), count,
+                                 ProgressSpan(context, DBRG_STAGE_FILL_HOLES, STITCH_PROGRESS, NUMBERING_PROGRESS),
+                                 numbered.input_index));
+    {
+        Array<uint32_t> vertex_of(context.memory);
+        if (!vertex_of.resize(count) || !numbered.coordinates.resize(3 * size_t(count))) {
+            return context.fail_out_of_memory();
+        }
+        for (uint32_t v = 0; v < count; ++v) {
+            const uint32_t caller = numbered.input_index[v];
+            vertex_of[caller] = v;
+            for (int a = 0; a < 3; ++a) numbered.coordinates[3 * size_t(v) + a] = xyz[3 * size_t(caller) + a];
+        }
+        xyz.release();
+        for (uint32_t& corner : mesh) corner = vertex_of[corner];
+    }
+    DBRG_PROPAGATE(orient_triangles(mesh, numbered.coordinates.data(), true, context));
     Surface surface(context.memory);
     if (!surface.reset(count) || !surface.reserve_faces(mesh.size() / 3)) return context.fail_out_of_memory();
     for (size_t f = 0; f < mesh.size() / 3; ++f) {
@@ -395,15 +418,11 @@ dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Arra
     // the assembled surface, as a single call runs it over its own.
     if (context.params.fill_holes) {
         const BoundaryCauses none_recorded(context.memory);
-        HoleFiller filler(xyz.data(), surface, none_recorded, context);
-        DBRG_PROPAGATE(filler.remove_small_handles(ProgressSpan(context, DBRG_STAGE_FILL_HOLES, STITCH_PROGRESS, 1.0)));
+        HoleFiller filler(numbered.coordinates.data(), surface, none_recorded, context);
+        DBRG_PROPAGATE(
+            filler.remove_small_handles(ProgressSpan(context, DBRG_STAGE_FILL_HOLES, NUMBERING_PROGRESS, 1.0)));
     }
-    // The caller's points as the output stage expects them: every point its own vertex.
-    ConditionedPoints identity(context.memory);
-    identity.coordinates.swap(xyz);
-    if (!identity.input_index.resize(count)) return context.fail_out_of_memory();
-    for (uint32_t v = 0; v < count; ++v) identity.input_index[v] = v;
-    DBRG_PROPAGATE(emit_surface(surface, identity, context, result));
+    DBRG_PROPAGATE(emit_surface(surface, numbered, context, result));
     // Each tile judges the points of its core, from its own points; a neighbouring tile that kept such a
     // point may have joined it to a face it owns, and then it is no outlier of the mesh.
     Array<uint8_t> used(context.memory);
