@@ -1033,7 +1033,8 @@ TEST_CASE("endless zero bytes from a pipe fail at once, with little read") {
 TEST_CASE("binary formats from a pipe read what their header declares and no more") {
     if (!HAVE_FIFOS) return;
     const MeshData mesh = float_exact_mesh();
-    for (const auto& format_and_name : {std::pair{MeshFormat::stl, "mesh.stl"}, std::pair{MeshFormat::ply_binary, "mesh.ply"}}) {
+    for (const auto& format_and_name :
+         {std::pair{MeshFormat::stl, "mesh.stl"}, std::pair{MeshFormat::ply_binary, "mesh.ply"}}) {
         // Not a structured binding: clang before 16 does not let CAPTURE's lambda see one.
         const auto [format, name] = format_and_name;
         CAPTURE(format_and_name.second);

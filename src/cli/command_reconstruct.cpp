@@ -204,7 +204,8 @@ int reconstruct_out_of_core(const ParsedArgs& args, const dbrg_params& params, c
                             const std::string& output) {
     uint64_t budget = 0;
     if (!parse_size(args.value("--max-memory"), budget)) {
-        return report_error(EXIT_USAGE, "reconstruct: --max-memory takes a size such as 1G, 512MiB, 1.5GB or 1500000000");
+        return report_error(EXIT_USAGE,
+                            "reconstruct: --max-memory takes a size such as 1G, 512MiB, 1.5GB or 1500000000");
     }
     for (const char* option : {"--demo", "--tiles", "--snapshots", "--outliers", "--output-smoothed", "--drop-unused"}) {
         if (args.has(option)) return report_error(EXIT_USAGE, std::string("reconstruct: ") + option + " does not combine with --max-memory");

@@ -79,6 +79,11 @@ dbrg_params piece_params(const dbrg_params& params) {
     return piece;
 }
 
+// total + piece, or the type's largest value where that would wrap (a run of billions of points).
+template <class Count>
+void add_counts(Count& total, Count piece) {
+    total = total > std::numeric_limits<Count>::max() - piece ? std::numeric_limits<Count>::max() : total + piece;
+}
 
 // Reconstructs tile `k` of the slabs and appends its owned triangles and its core's outliers, in the caller's
 // indexing, to `owned` and `outliers`.
@@ -204,16 +209,6 @@ dbrg_status stitch_wall(const Array<double>& xyz, const Array<uint32_t>& mesh, c
     for (uint32_t f : seam_dropped) dropped.push_back(faces[f]);
     for (uint32_t v : seam_added) added.push_back(points[v]);
     return DBRG_OK;
-}
-
-} // namespace
-
-namespace {
-
-// total + piece, or the type's largest value where that would wrap (a run of billions of points).
-template <class Count>
-void add_counts(Count& total, Count piece) {
-    total = total > std::numeric_limits<Count>::max() - piece ? std::numeric_limits<Count>::max() : total + piece;
 }
 
 } // namespace

@@ -71,8 +71,9 @@ dbrg_status assemble_tiles(Array<double>& xyz, Array<uint32_t>& mesh, const Arra
                            Context& context, SurfaceResult& result);
 
 // Adds a piece's figures (a tile's, a seam stitch's) to the whole run's: counts and seconds add up (a halo
-// point cleaned in two tiles counts in both; a count stops at its type's largest value); the noise estimate and the smoothing rounds are the largest a
-// piece had. The whole mesh's figures (points, faces, loops, outliers, tiles) are the total's own.
+// point cleaned in two tiles counts in both; a count stops at its type's largest value); the noise estimate
+// and the smoothing rounds are the largest a piece had. The whole mesh's figures (points, faces, loops,
+// outliers, tiles) are the total's own.
 void add_piece_stats(const dbrg_stats& piece, dbrg_stats& total);
 
 // Reconstructs `points` as `tile_count` slabs (plan_tiling), one after another, then stitches the even

@@ -176,7 +176,8 @@ class Distributed(unittest.TestCase):
         self.assertGreater(mesh.stats["tile_peak_bytes"], 0)
         # seconds_total is the whole run's on the driver: at least half the pieces' work, on two workers.
         self.assertLessEqual(mesh.stats["seconds_total"], elapsed)
-        self.assertGreaterEqual(mesh.stats["seconds_total"], (mesh.stats["seconds_delaunay"] + mesh.stats["seconds_grow"]) / 2)
+        pieces_work = mesh.stats["seconds_delaunay"] + mesh.stats["seconds_grow"]
+        self.assertGreaterEqual(mesh.stats["seconds_total"], pieces_work / 2)
 
     def test_the_outliers_of_the_c_loop(self):
         # Points far above and below the torus (20 spacings and more): each tile lists those of its core, the
