@@ -6,6 +6,7 @@
 #include <cmath>
 #include <array>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -382,6 +383,42 @@ TEST_CASE("the assembly orients faces given in any order and any direction") {
         CHECK(oriented_faces(assembled.triangles) == oriented_faces(faces));
         CHECK(assembled.stats.seam_faces_dropped == 0);
     }
+}
+
+TEST_CASE("the assembly keeps the same faces whatever the order of the points, conflicting faces included") {
+    const std::vector<double> xyz = samples::sample(samples::Shape::double_torus, 4000);
+    const test::Reconstruction single = test::reconstruct(xyz);
+    REQUIRE(single.status == DBRG_OK);
+    // The mesh's faces, and conflicting ones: for every 40th face, the quad it forms with its neighbour
+    // across its first edge, triangulated across the other diagonal. The two pairs are pieces of their own
+    // (their outer edges have three faces each), and the assembly keeps the pair it takes first.
+    std::vector<uint32_t> faces = single.triangles;
+    const size_t count = faces.size() / 3;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> apex;  // directed edge -> the corner opposite it
+    for (size_t f = 0; f < count; ++f) {
+        for (int k = 0; k < 3; ++k) apex[{faces[3 * f + k], faces[3 * f + (k + 1) % 3]}] = faces[3 * f + (k + 2) % 3];
+    }
+    for (size_t f = 0; f < count; f += 40) {
+        const uint32_t a = faces[3 * f], b = faces[3 * f + 1], c = faces[3 * f + 2], d = apex.at({b, a});
+        faces.insert(faces.end(), {c, a, d, d, b, c});
+    }
+    const test::Reconstruction given = test::assemble(xyz, faces);
+    REQUIRE(given.status == DBRG_OK);
+    test::require_valid_manifold(test::report_of(xyz, given.triangles));
+    CHECK(given.stats.seam_faces_dropped > 0);
+    // The points reversed, then every other one swapped with its neighbour; the faces renumbered to match.
+    const uint32_t points = static_cast<uint32_t>(xyz.size() / 3);
+    std::vector<uint32_t> moved_to(points);
+    for (uint32_t v = 0; v < points; ++v) moved_to[v] = points - 1 - v;
+    for (uint32_t v = 0; v + 1 < points; v += 2) std::swap(moved_to[v], moved_to[v + 1]);
+    std::vector<double> moved(xyz.size());
+    for (uint32_t v = 0; v < points; ++v) std::copy_n(xyz.begin() + 3 * v, 3, moved.begin() + 3 * moved_to[v]);
+    std::vector<uint32_t> renumbered(faces.size());
+    for (size_t i = 0; i < faces.size(); ++i) renumbered[i] = moved_to[faces[i]];
+    const test::Reconstruction other = test::assemble(moved, renumbered);
+    REQUIRE(other.status == DBRG_OK);
+    CHECK(other.stats.seam_faces_dropped == given.stats.seam_faces_dropped);
+    CHECK(test::triangles_by_position(moved, other.triangles) == test::triangles_by_position(xyz, given.triangles));
 }
 
 TEST_CASE("a small cloud runs as one piece: slabs thinner than their strips are merged") {

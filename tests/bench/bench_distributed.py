@@ -3,10 +3,11 @@
 call, on the same points. Not a test: run it by hand on a release build.
 
     DBRG_LIBRARY=build/src/libdbrg.so DBRG_IO_LIBRARY=build/src/io/libdbrg_io.so \\
-        python3 tests/bench/bench_distributed.py POINTS.ply [--tiles 8] [--repeat 3]
+        python3 tests/bench/bench_distributed.py POINTS.ply [--tiles 8] [--repeat 3] [--warm]
 
 Every run is a fresh child process (and, for Dask, a fresh LocalCluster of one-thread worker processes), the
-configurations alternating within each repeat. Reported per run: wall seconds, processor seconds of the
+configurations alternating within each repeat. With --warm a Dask run is the cluster's second on the points,
+as on a cluster that serves run after run; else its first, worker start-up costs included. Reported per run: wall seconds, processor seconds of the
 child and of the Dask workers (getrusage, read on each worker before the cluster closes) — processor time
 because the machine may be shared — and the peak resident set of the child (which holds the cloud and the
 mesh) and of the largest worker. Every run's faces are compared with the first tiled run's.
@@ -40,7 +41,7 @@ def peak_rss_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
-def run_one(configuration, path, tiles):
+def run_one(configuration, path, tiles, warm):
     import numpy as np
     import dbrg
     points, _ = dbrg.read_points(path)
@@ -64,6 +65,8 @@ def run_one(configuration, path, tiles):
         cluster = dbrg.distributed.local_cluster(int(configuration[-1]), memory_limit="1.5GiB")
         client = Client(cluster)
         client.wait_for_workers(int(configuration[-1]))
+        if warm:  # a cluster that has served a run: the workers have loaded the library and hold freed memory
+            dbrg.distributed.reconstruct(points, tiles=tiles, client=client, progress=False)
         before = sum(client.run(worker_seconds).values())
         start_cpu, start = cpu_seconds(resource.getrusage(resource.RUSAGE_SELF)), time.monotonic()
         triangles = dbrg.distributed.reconstruct(points, tiles=tiles, client=client, progress=False).triangles
@@ -86,16 +89,19 @@ def main():
     parser.add_argument("--tiles", type=int, default=8)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--only", default=",".join(CONFIGURATIONS))
+    parser.add_argument("--warm", action="store_true",
+                        help="time each Dask configuration's second run on its cluster, not its first")
     parser.add_argument("--one", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
     if arguments.one:
-        print(json.dumps(run_one(arguments.one, arguments.points, arguments.tiles)))
+        print(json.dumps(run_one(arguments.one, arguments.points, arguments.tiles, arguments.warm)))
         return
     runs = {name: [] for name in arguments.only.split(",")}
     for repeat in range(arguments.repeat):
         for name in runs:
             output = subprocess.run([sys.executable, __file__, arguments.points, "--tiles", str(arguments.tiles),
-                                     "--one", name], check=True, capture_output=True, text=True).stdout
+                                     "--one", name] + ["--warm"] * arguments.warm, check=True, capture_output=True,
+                                    text=True).stdout
             result = json.loads(output.strip().splitlines()[-1])
             runs[name].append(result)
             print("%-7s wall %7.1f s, processor %7.1f s (this process %6.1f, workers %6.1f), peak RSS %5.0f MB "

@@ -19,6 +19,7 @@ this package importable on the workers.
 
 import ctypes
 import platform
+import threading
 import time
 import warnings
 
@@ -186,30 +187,21 @@ def stitch_task(xyz, ids, faces, axis, spacing, wall, options):
         lib.dbrg_tile_mesh_destroy(handle)
 
 
-def _seam_inputs(coordinate, faces, walls, reach):
-    """What each stitch of a half is sent, as dbrg_seam_stitch asks: the points within `reach` of its wall
+def _seam_input(coordinate, faces, wall, reach, near=None):
+    """What the stitch of `wall` is sent, as dbrg_seam_stitch asks: the points within `reach` of the wall
     (`coordinate`: the points' coordinates on the plan's axis, NaN for the outliers, which no stitch is
-    given), the faces touching them or sharing a corner with such a face, and those faces' corners. Yields (indices of the faces in `faces`, ids of the points,
-    ascending) for each wall in turn, so that its stitch can start while the next wall's input is found.
-
-    Two passes over all the faces serve the whole half: every face a stitch is sent has a corner near one of
-    the walls or a corner of a face that has one (`marked`); each wall then looks at those few faces only."""
-    near = [np.flatnonzero(np.abs(coordinate - wall) < reach) for wall in walls]
+    given), the faces touching them or sharing a corner with such a face, and those faces' corners. Returns
+    (indices of the faces in `faces`, ids of the points, ascending); `near`, when given, is the points
+    within reach (_near)."""
+    near = _near(coordinate, wall, reach) if near is None else near
     marked = np.zeros(len(coordinate), dtype=bool)
-    for points in near:
-        marked[points] = True
+    marked[near] = True
     marked[faces[_any_corner(marked, faces)]] = True
-    candidates = np.flatnonzero(_any_corner(marked, faces))
-    nearby = faces[candidates]
-    for points in near:
-        marked[:] = False
-        marked[points] = True
-        marked[nearby[_any_corner(marked, nearby)]] = True
-        given = _any_corner(marked, nearby)
-        marked[:] = False
-        marked[points] = True
-        marked[nearby[given]] = True
-        yield candidates[given], np.flatnonzero(marked)
+    given = np.flatnonzero(_any_corner(marked, faces))
+    marked[:] = False
+    marked[near] = True
+    marked[faces[given]] = True
+    return given, np.flatnonzero(marked)
 
 
 def _any_corner(mask, faces):
@@ -217,6 +209,11 @@ def _any_corner(mask, faces):
     numpy's any() over an axis of length 3 takes several times as long.)"""
     flags = mask[faces]
     return flags[:, 0] | flags[:, 1] | flags[:, 2]
+
+
+def _near(coordinate, wall, reach):
+    """The points within `reach` of `wall` on the axis (NaN, an outlier, is never near)."""
+    return np.flatnonzero(np.abs(coordinate - wall) < reach)
 
 
 def _open_client(client, scheduler, n_workers, memory_limit):
@@ -240,13 +237,6 @@ def local_cluster(n_workers=2, memory_limit="1GiB"):
                         dashboard_address=":0")
 
 
-def _wait(client, futures, progress):
-    if progress:
-        from distributed import progress as progress_bar
-        progress_bar(futures)
-    return client.gather(futures)
-
-
 def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memory_limit="1GiB", progress=True,
                 **options):
     """Reconstructs `points` as `tiles` slabs on a Dask cluster and returns a dbrg.Mesh, with the faces of
@@ -258,7 +248,8 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
     client: a distributed.Client to run on; else `scheduler`, a scheduler's address ("tcp://host:8786");
         else a LocalCluster of `n_workers` worker processes of one thread and `memory_limit` each, closed
         on return.
-    progress: show Dask's progress bar for the tiles and for each half of the stitches.
+    progress: show Dask's progress bar for the tiles (the stitches, sent as the tiles around them finish, are
+        a few percent of the work).
     options: the surface parameters of dbrg.reconstruct (sliver_angle, boundary_factor, boundary_mean,
         fill_holes, max_hole_edges, max_components, backend, cleaning); every task uses one thread.
     Mesh.stats holds the assembly's figures with the tiles' and stitches' added as the C loop adds them
@@ -293,11 +284,7 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
             # Dask advises scattering large task arguments; here they are sent in the tasks on purpose, so
             # that a task outlives the worker it ran on (module docstring).
             warnings.filterwarnings("ignore", message="Large object of size", category=UserWarning)
-            faces, outliers, pieces = _tiles(client, array, cut, options, progress)
-            for half in (0, 1):
-                faces, stitched = _stitch_half(client, array, faces, outliers, cut, cut.walls[half::2], options,
-                                               progress)
-                pieces += stitched
+            faces, outliers, pieces = _tiles_and_stitches(client, array, cut, options, progress)
     finally:
         for thing in opened:
             thing.close()
@@ -306,42 +293,183 @@ def reconstruct(points, tiles=8, client=None, scheduler=None, n_workers=2, memor
     return mesh
 
 
-def _tiles(client, array, cut, options, progress):
-    """Every tile's owned faces, concatenated in tile order: an (F, 3) array of point indices (_index_type),
-    the tiles' outliers, ascending (each point lies in one core: none comes twice), and their statistics.
-    Each tile is sent as soon as its points are cut, so the first tiles run while the next are cut. (Tasks
-    are submitted as impure: their keys are not hashed from their arguments, megabytes of points.)"""
-    coordinate = array[:, cut.axis]
+class _Source:
+    """Faces of the mesh being built: a tile's owned faces, or the faces a stitch added. `low` and `high`
+    bound, on the plan's axis, the points its faces may use (those of its task) and so every face its task
+    may add or drop. `faces` is None until its task is done; then `after_even` flags the faces that no even
+    wall's stitch dropped (what an odd wall's stitch is given to choose from) and `kept` those no stitch
+    dropped."""
+
+    def __init__(self, low, high):
+        self.low, self.high = low, high
+        self.faces = self.after_even = self.kept = None
+
+    def done(self):
+        return self.faces is not None
+
+    def reaches(self, low, high):
+        return self.low <= high and low <= self.high
+
+    def finish(self, faces):
+        self.faces = faces
+        self.after_even = np.ones(len(faces), dtype=bool)
+        self.kept = np.ones(len(faces), dtype=bool)
+
+
+class _Stitch:
+    """A wall's stitch: the sources it may read (the tiles; for an odd wall also the even walls' stitches'),
+    the source of the faces it adds, and once sent, the faces it was given as (source, indices) pairs."""
+
+    def __init__(self, wall, odd, reads, added):
+        self.wall, self.odd, self.reads, self.added = wall, odd, reads, added
+        self.near = self.given = self.future = None
+
+    def choices(self, source):
+        """The indices of the faces of `source` this stitch chooses from: an even wall's stitch all the
+        tiles' faces, an odd wall's those left after the even walls' stitches, as in the C loop."""
+        return np.flatnonzero(source.after_even) if self.odd else np.arange(len(source.faces))
+
+
+def _extent(values):
+    """The smallest interval holding `values` (an empty one when there are none)."""
+    return (values.min(), values.max()) if len(values) else (np.inf, -np.inf)
+
+
+def _hull_of_reaching(sources, low, high):
+    """The smallest interval holding [low, high] and every one of `sources` that reaches it."""
+    reaching = [source for source in sources if source.reaches(low, high)]
+    return min([low] + [source.low for source in reaching]), max([high] + [source.high for source in reaching])
+
+
+def _stitch_input(stitch, axis_values, coordinate, reach):
+    """What `stitch` is to be sent, once everything it may be sent is known: (ids of its points, the faces it
+    is given as (source, indices into the source's faces) pairs); else None.
+
+    A stitch is given the faces with a corner within `reach` of its wall and those sharing a corner with
+    them. Every corner of a source's faces lies where the source reaches, so only the sources reaching the
+    wall hold faces of the first kind, and only those reaching the first ones' corners faces of the second:
+    once those are done, the input is what it is when every task is done, as in the C loop."""
+    low, high = stitch.wall - reach, stitch.wall + reach
+    first = [source for source in stitch.reads if source.reaches(low, high)]
+    if not all(source.done() for source in first):
+        return None
+    if stitch.near is None:  # the outliers near the wall are known: the tiles holding them are among the first
+        stitch.near = _near(coordinate, stitch.wall, reach)
+    marked = np.zeros(len(coordinate), dtype=bool)
+    marked[stitch.near] = True
+    touching = [source.faces[stitch.choices(source)] for source in first]
+    corners = np.concatenate([faces[_any_corner(marked, faces)].ravel() for faces in touching])
+    corner_low, corner_high = _extent(axis_values[corners])
+    second = [source for source in stitch.reads if source.reaches(min(low, corner_low), max(high, corner_high))]
+    if not all(source.done() for source in second):
+        return None
+    choices = [stitch.choices(source) for source in second]
+    faces = np.concatenate([source.faces[indices] for source, indices in zip(second, choices)])
+    given, ids = _seam_input(coordinate, faces, stitch.wall, reach, stitch.near)
+    starts = np.cumsum([0] + [len(indices) for indices in choices])
+    return ids, [(source, indices[given[(given >= begin) & (given < end)] - begin])
+                 for source, indices, begin, end in zip(second, choices, starts[:-1], starts[1:])]
+
+
+class _Stitching:
+    """Which stitch can be sent when, and the faces as the tasks finish: the driver's bookkeeping, apart from
+    Dask. An even wall's stitch is sent once the tiles around it are done, an odd wall's once the even walls'
+    stitches next to it are (_stitch_input), so that stitches run beside the last tiles and no step waits for
+    all; every stitch is still given what it is given when every task before it is done, as in the C loop."""
+
+    def __init__(self, axis_values, tile_points, walls, reach):
+        self.axis_values = axis_values
+        self.coordinate = axis_values.copy()  # NaN at the tiles' outliers, as each tile reports them
+        self.reach = reach
+        self.tiles = [_Source(*_extent(axis_values[points])) for points in tile_points]
+        # Until it is sent, an even wall's stitch may be given points as far as the tiles it may read reach.
+        self.even = [_Stitch(wall, False, self.tiles, _Source(*_hull_of_reaching(
+            self.tiles, *_hull_of_reaching(self.tiles, wall - reach, wall + reach)))) for wall in walls[0::2]]
+        self.odd = [_Stitch(wall, True, self.tiles + [stitch.added for stitch in self.even], _Source(np.inf, -np.inf))
+                    for wall in walls[1::2]]
+        self.waiting = self.even + self.odd
+        self.outliers = []
+
+    def tile_done(self, k, faces, outliers):
+        self.coordinate[outliers] = np.nan
+        self.outliers.append(outliers)
+        self.tiles[k].finish(faces)
+
+    def stitch_done(self, stitch, dropped, added):
+        """`dropped`: indices into the faces `stitch` was given; `added`: the faces it grew."""
+        start = 0
+        for source, indices in stitch.given:
+            mine = indices[dropped[(dropped >= start) & (dropped < start + len(indices))] - start]
+            source.kept[mine] = False
+            if not stitch.odd:
+                source.after_even[mine] = False
+            start += len(indices)
+        stitch.added.finish(added)
+
+    def ready(self):
+        """The stitches whose input is now known, each as (stitch, ids of its points, the faces it is
+        given), taken off the waiting list."""
+        found = []
+        for stitch in list(self.waiting):
+            sent = _stitch_input(stitch, self.axis_values, self.coordinate, self.reach)
+            if sent is None:
+                continue
+            ids, stitch.given = sent
+            stitch.added.low, stitch.added.high = _extent(self.axis_values[ids])
+            self.waiting.remove(stitch)
+            found.append((stitch, ids, np.concatenate([source.faces[indices] for source, indices in stitch.given])))
+        return found
+
+    def faces(self):
+        """The faces no stitch dropped: the tiles', in tile order, then the stitches', even walls first."""
+        sources = self.tiles + [stitch.added for stitch in self.even + self.odd]
+        return np.concatenate([source.faces[source.kept] for source in sources])
+
+
+def _tiles_and_stitches(client, array, cut, options, progress):
+    """Every tile and stitch, each stitch sent as soon as its input is known (_Stitching). Returns the faces
+    (_Stitching.faces), the tiles' outliers, ascending, and the tasks' statistics (tiles, even walls, odd
+    walls). (Tasks are submitted as impure: their keys are not hashed from their arguments, megabytes of
+    points.)"""
+    from distributed import as_completed
+    axis_values = array[:, cut.axis]
     index_type = _index_type(len(array))
-    futures = []
+    tile_points, tile_futures = [], []
     for k in range(len(cut.walls) + 1):
         low, high = cut.core(k)
-        inside = np.flatnonzero((coordinate >= low[cut.axis] - cut.halo) & (coordinate < high[cut.axis] + cut.halo))
-        futures.append(client.submit(tile_task, array[inside], inside.astype(index_type), low, high, options,
-                                     pure=False))
-    results = _wait(client, futures, progress)
-    return (np.concatenate([faces for faces, _, _ in results]), np.sort(np.concatenate([ids for _, ids, _ in results])),
-            [stats for _, _, stats in results])
+        inside = np.flatnonzero((axis_values >= low[cut.axis] - cut.halo) & (axis_values < high[cut.axis] + cut.halo))
+        tile_points.append(inside)
+        tile_futures.append(client.submit(tile_task, array[inside], inside.astype(index_type), low, high, options,
+                                          pure=False))
+    stitching = _Stitching(axis_values, tile_points, cut.walls, cut.seam_reach)
+    bar = _progress_bar(tile_futures) if progress else None
+    tile_of = {future.key: k for k, future in enumerate(tile_futures)}
+    stitch_of, stats = {}, {}
+    running = as_completed(tile_futures, with_results=True)
+    for future, result in running:
+        if future.key in tile_of:
+            faces, outliers, stats[future.key] = result
+            stitching.tile_done(tile_of[future.key], faces, outliers)
+        else:
+            dropped, added, stats[future.key] = result
+            stitching.stitch_done(stitch_of[future.key], dropped, added)
+        for stitch, ids, given in stitching.ready():
+            stitch.future = client.submit(stitch_task, array[ids], ids.astype(index_type), given, cut.axis,
+                                          cut.spacing, stitch.wall, options, pure=False)
+            stitch_of[stitch.future.key] = stitch
+            running.add(stitch.future)
+    if bar is not None:
+        bar.join()
+    keys = [future.key for future in tile_futures] + [stitch.future.key for stitch in stitching.even + stitching.odd]
+    return stitching.faces(), np.sort(np.concatenate(stitching.outliers)), [stats[key] for key in keys]
 
 
-def _stitch_half(client, array, faces, outliers, cut, walls, options, progress):
-    """The faces after stitching `walls` (a half: two slabs apart, so their stitches touch disjoint faces),
-    each stitch on `faces` as they are, and the stitches' statistics."""
-    futures, given_faces = [], []
-    coordinate = array[:, cut.axis].copy()
-    coordinate[outliers] = np.nan
-    inputs = _seam_inputs(coordinate, faces, walls, cut.seam_reach)
-    for wall, (given, ids) in zip(walls, inputs):
-        given_faces.append(given)
-        futures.append(client.submit(stitch_task, array[ids], ids.astype(faces.dtype), faces[given], cut.axis,
-                                     cut.spacing, wall, options, pure=False))
-    results = _wait(client, futures, progress)
-    keep = np.ones(len(faces), dtype=bool)
-    added = []
-    for given, (dropped, grown, _) in zip(given_faces, results):
-        keep[given[dropped]] = False
-        added.append(grown)
-    return np.concatenate([faces[keep]] + added), [stats for _, _, stats in results]
+def _progress_bar(futures):
+    """Dask's progress bar for `futures`, drawn by a thread while the driver goes on sending tasks."""
+    from distributed import progress as progress_bar
+    thread = threading.Thread(target=progress_bar, args=(futures,), daemon=True)
+    thread.start()
+    return thread
 
 
 def _added_up(lib, handle, pieces):

@@ -131,15 +131,95 @@ class SeamInputs(unittest.TestCase):
         near_a_wall = np.flatnonzero(np.min(np.abs(coordinate[:, None] - np.array(cut.walls)), axis=1) < cut.seam_reach)
         outliers = near_a_wall[::7]
         coordinate[outliers] = np.nan
-        for walls in (cut.walls[0::2], cut.walls[1::2]):
-            found = list(dbrg_distributed._seam_inputs(coordinate, faces, walls, cut.seam_reach))
-            self.assertEqual(len(found), len(walls))
-            for wall, (given, ids) in zip(walls, found):
-                expected_given, expected_ids = seam_input_by_definition(points, faces, cut.axis, wall, cut.seam_reach,
-                                                                        outliers)
-                self.assertTrue(np.array_equal(given, expected_given))
-                self.assertTrue(np.array_equal(ids, expected_ids))
-                self.assertFalse(np.isin(np.setdiff1d(outliers, faces[given]), ids).any())
+        for wall in cut.walls:
+            given, ids = dbrg_distributed._seam_input(coordinate, faces, wall, cut.seam_reach)
+            expected_given, expected_ids = seam_input_by_definition(points, faces, cut.axis, wall, cut.seam_reach,
+                                                                    outliers)
+            self.assertTrue(np.array_equal(given, expected_given))
+            self.assertTrue(np.array_equal(ids, expected_ids))
+            self.assertFalse(np.isin(np.setdiff1d(outliers, faces[given]), ids).any())
+
+
+def tube(count, length=8.0, radius=0.3, seed=3):
+    """An open tube along x, long enough for slabs much wider than the halo and the seam reach."""
+    rng = np.random.default_rng(seed)
+    u, x = rng.uniform(0, 2 * np.pi, count), rng.uniform(0, length, count)
+    return np.stack([x, radius * np.cos(u), radius * np.sin(u)], axis=1)
+
+
+def sorted_rows(faces):
+    return sorted(map(tuple, np.asarray(faces).tolist()))
+
+
+@unittest.skipIf(distributed is None, MISSING if distributed is None else "")
+class Stitching(unittest.TestCase):
+    """The driver sends a stitch as soon as its input is known (_Stitching): never before, and then with the
+    input it gets when every task before it is done, whatever order the tasks finish in."""
+
+    def test_inputs_and_faces_whatever_order_tasks_finish_in(self):
+        points = tube(12000)
+        cut = dbrg_distributed.plan(points, 6)
+        self.assertEqual(len(cut.walls), 5)
+        axis_values = points[:, cut.axis]
+        loop_faces = c_loop(points, 6).triangles
+        rng = np.random.default_rng(4)
+        early = 0
+        for _ in range(8):
+            # Each tile's faces: some of the tiled loop's among its points, and long random ones among them
+            # that reach across walls.
+            tile_points, tile_faces = [], []
+            free = rng.random(len(loop_faces)) < 0.5  # each face in one tile at most
+            for k in range(len(cut.walls) + 1):
+                low, high = cut.core(k)
+                inside = np.flatnonzero((axis_values >= low[cut.axis] - cut.halo)
+                                        & (axis_values < high[cut.axis] + cut.halo))
+                mine = free & np.isin(loop_faces, inside).all(axis=1)
+                free &= ~mine
+                tile_points.append(inside)
+                tile_faces.append(np.concatenate([loop_faces[mine], rng.choice(inside, size=(40, 3))]).astype(np.uint32))
+            stitching = dbrg_distributed._Stitching(axis_values, tile_points, cut.walls, cut.seam_reach)
+            # Tiles and sent stitches finish in random order. A stitch drops every third face it is given
+            # and grows faces among its points.
+            to_finish = [("tile", k) for k in range(len(tile_faces))]
+            sent, results = {}, {}
+            while to_finish:
+                kind, what = to_finish.pop(rng.integers(len(to_finish)))
+                if kind == "tile":
+                    stitching.tile_done(what, tile_faces[what], np.empty(0, dtype=np.int64))
+                else:
+                    stitching.stitch_done(what, *results[what.wall])
+                for stitch, ids, given in stitching.ready():
+                    unfinished = sum(1 for other, _ in to_finish if other == "tile") + sum(
+                        1 for other, task in to_finish if other == "stitch" and not task.odd)
+                    early += unfinished > 0
+                    sent[stitch.wall] = (ids, given)
+                    results[stitch.wall] = (np.arange(0, len(given), 3), rng.choice(ids, size=(30, 3)).astype(np.uint32))
+                    to_finish.append(("stitch", stitch))
+            self.assertEqual(sorted(sent), sorted(cut.walls))
+            # What each stitch is given in the C loop: the even walls' from the tiles' faces, the odd walls'
+            # from those the even walls' stitches left and added.
+            before = np.concatenate(tile_faces)
+            dropped = [sent[wall][1][results[wall][0]] for wall in cut.walls[0::2]]
+            after_even = remove_rows(before, np.concatenate(dropped)) + [
+                row for wall in cut.walls[0::2] for row in results[wall][1].tolist()]
+            for walls, faces in ((cut.walls[0::2], before), (cut.walls[1::2], np.array(after_even))):
+                for wall in walls:
+                    expected_given, expected_ids = seam_input_by_definition(points, faces, cut.axis, wall,
+                                                                            cut.seam_reach)
+                    self.assertTrue(np.array_equal(sent[wall][0], expected_ids))
+                    self.assertEqual(sorted_rows(sent[wall][1]), sorted_rows(faces[expected_given]))
+            dropped = [sent[wall][1][results[wall][0]] for wall in cut.walls[1::2]]
+            final = remove_rows(np.array(after_even), np.concatenate(dropped)) + [
+                row for wall in cut.walls[1::2] for row in results[wall][1].tolist()]
+            self.assertEqual(sorted_rows(stitching.faces()), sorted(map(tuple, final)))
+        self.assertGreater(early, 0)  # some stitches were sent before every task was done
+
+
+def remove_rows(faces, removed):
+    """The rows of `faces` that are not rows of `removed` (a face two stitches of a half both drop goes once),
+    as a list."""
+    gone = set(sorted_rows(removed))
+    return [row for row in np.asarray(faces).tolist() if tuple(row) not in gone]
 
 
 @unittest.skipIf(distributed is None, MISSING if distributed is None else "")
