@@ -12,9 +12,11 @@
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "core/context.h"
@@ -25,7 +27,9 @@
 #include "support/mesh_checks.h"
 #include "tiles/cloud_files.h"
 #include "tiles/out_of_core.h"
+#include "support/shared_data.h"
 #include "tiles/point_spacing.h"
+#include "tiles/seam_manifold.h"
 #include "tiles/tiled_reconstruction.h"
 
 using namespace dbrg;
@@ -482,4 +486,88 @@ TEST_CASE("a memory budget sets the number of slabs, and no tile holds more than
     CHECK(run.report.tile_peak_bytes > 0);
     // The library's share: the whole cloud in one piece would hold about three times as much.
     CHECK(run.report.tile_peak_bytes <= budget - uint64_t(out_of_core::BASE_BYTES));
+}
+
+namespace {
+
+// The faces left out by faces_breaking_manifold, as sorted corner triples.
+std::set<std::array<uint64_t, 3>> left_out(const std::vector<uint64_t>& faces, const std::unordered_set<uint64_t>& checked) {
+    std::set<std::array<uint64_t, 3>> out;
+    for (size_t f : out_of_core::faces_breaking_manifold(faces.data(), faces.size() / 3, checked)) {
+        std::array<uint64_t, 3> corners{faces[3 * f], faces[3 * f + 1], faces[3 * f + 2]};
+        std::sort(corners.begin(), corners.end());
+        out.insert(corners);
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("the seam check leaves out repeated faces, third faces on an edge and the smaller fans of a pinch") {
+    // A fan of six faces around vertex 0 (ring 1..6), ids far past 2^32.
+    const uint64_t big = uint64_t(1) << 40;
+    std::vector<uint64_t> fan;
+    for (uint64_t i = 1; i <= 6; ++i) fan.insert(fan.end(), {big, big + i, big + i % 6 + 1});
+    const std::unordered_set<uint64_t> centre{big};
+    CHECK(left_out(fan, centre).empty());
+
+    std::vector<uint64_t> repeated = fan;
+    repeated.insert(repeated.end(), {big + 2, big + 3, big});  // face 2 again, turned
+    CHECK(left_out(repeated, centre) == std::set<std::array<uint64_t, 3>>{{big, big + 2, big + 3}});
+    CHECK(out_of_core::faces_breaking_manifold(repeated.data(), 7, centre) == std::vector<size_t>{6});
+
+    std::vector<uint64_t> fin = fan;
+    fin.insert(fin.end(), {big, big + 1, big + 9});  // a third face on the edge 0-1, taken last by its corners
+    CHECK(left_out(fin, centre) == std::set<std::array<uint64_t, 3>>{{big, big + 1, big + 9}});
+
+    // A second fan of two faces touching the first at 0 only: the vertex keeps the larger, the fan of six.
+    std::vector<uint64_t> pinched = fan;
+    pinched.insert(pinched.end(), {big, big + 7, big + 8, big, big + 8, big + 9});
+    CHECK(left_out(pinched, centre) == std::set<std::array<uint64_t, 3>>{{big, big + 7, big + 8}, {big, big + 8, big + 9}});
+    // Given in another order, the same faces are left out.
+    std::vector<uint64_t> reversed;
+    for (size_t f = pinched.size() / 3; f-- > 0;) reversed.insert(reversed.end(), pinched.begin() + 3 * f, pinched.begin() + 3 * f + 3);
+    CHECK(left_out(reversed, centre) == left_out(pinched, centre));
+    // A vertex not checked is not looked at: the pinch at 0 stays when only the ring is checked, and the
+    // fin too when neither end of its edge is checked.
+    CHECK(left_out(pinched, {big + 3}).empty());
+    CHECK(left_out(fin, {big + 4}).empty());
+    // Two fans of equal size: the one holding the first face by its sorted corners stays.
+    const std::vector<uint64_t> bowtie{5, 1, 2, 5, 3, 4};
+    CHECK(left_out(bowtie, {5}) == std::set<std::array<uint64_t, 3>>{{3, 4, 5}});
+}
+
+TEST_CASE("out-of-core meshes of the shared data are manifolds, the seams checked as the assembly checks them" *
+          doctest::test_suite(test::SHARED_DATA_SUITE)) {
+    const std::string dir = test::shared_data_dir_or_skip();
+    if (dir.empty()) return;
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        if (io::format_from_path(entry.path().filename().string())) names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    REQUIRE_FALSE(names.empty());
+    Folder folder;
+    for (const std::string& name : names) {
+        io::MeshData given;
+        REQUIRE(io::read_mesh(dir + "/" + name, given));
+        for (uint32_t tiles : {2u, 4u, 8u}) {
+            CAPTURE(name);
+            CAPTURE(tiles);
+            const FileRun run = reconstruct_file(folder, given.positions, tiles);
+            REQUIRE_MESSAGE(run.status, run.status.message);
+            const test::Reconstruction tiled = test::reconstruct_tiled(given.positions, tiles);
+            REQUIRE(tiled.status == DBRG_OK);
+            const measure::MeshReport report = test::report_of(given.positions, run.triangles);
+            MESSAGE(name << " at " << tiles << ": " << run.report.seam_faces_dropped << " seam faces left out ("
+                         << tiled.stats.seam_faces_dropped << " by --tiles), " << run.report.orientation_conflicts
+                         << " orientation conflicts; face agreement with --tiles " << face_agreement(run.triangles, tiled.triangles));
+            CHECK(report.edges_nonmanifold == 0);
+            CHECK(report.vertices_nonmanifold == 0);
+            CHECK(report.duplicate_faces == 0);
+            CHECK(report.degenerate_faces == 0);
+            // Pieces that cannot be turned to agree across a seam are counted, never silent.
+            CHECK(report.oriented == (run.report.orientation_conflicts == 0));
+        }
+    }
 }

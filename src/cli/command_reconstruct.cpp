@@ -242,6 +242,7 @@ int reconstruct_out_of_core(const ParsedArgs& args, const dbrg_params& params, c
             .add_unsigned("max_memory_bytes", budget)
             .add_unsigned("tile_peak_bytes", report.tile_peak_bytes)
             .add_unsigned("orientation_conflicts", report.orientation_conflicts)
+            .add_unsigned("seam_faces_dropped", report.seam_faces_dropped)
             .add_number("seconds_total", seconds)
             .add_unsigned("peak_rss_bytes", peak_rss_bytes());
         std::string error;

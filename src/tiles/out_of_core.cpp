@@ -13,6 +13,7 @@
 #include "io/ply_stream_writer.h"
 #include "io/point_reader.h"
 #include "tiles/cloud_files.h"
+#include "tiles/seam_manifold.h"
 #include "tiles/tiled_reconstruction.h"
 
 namespace dbrg::out_of_core {
@@ -187,6 +188,7 @@ public:
                 if (status) status = stitch(w);
             }
         }
+        for (size_t w = 0; status && w < walls_.size(); ++w) status = check_seam(w);
         if (status) status = progress(DBRG_STAGE_OUTPUT, 0.0);
         std::vector<PieceFacts> pieces;
         std::vector<std::vector<BorderEdge>> borders(tiles_);
@@ -261,34 +263,44 @@ private:
 
     // Stitches wall w from the points and faces near it (those of the slabs on either side), then puts
     // the faces back in the two slabs' files by the side of the wall their centroid is on.
-    IoStatus stitch(size_t w) {
-        const double wall = walls_[w];
-        const int axis = summary_.axis;
-        const double strip = STRIP_SPACINGS * spacing_, reach = strip + MARGIN_SPACINGS * spacing_;
-        // Both buckets hold every point within a halo of the wall, and each reaches a slab (12 spacings)
-        // further on its side: twice the reach keeps the corners of every face near the wall.
-        const double window = 2 * reach;
-        PointMap near;
-        std::vector<FaceRecord> sides[2];
+    // The points of the slabs on either side of wall w within twice the stitch's reach of it, and the
+    // faces of both slabs. Both buckets hold every point within a halo of the wall, and each reaches a slab
+    // (12 spacings) further on its side: twice the reach keeps the corners of every face near the wall.
+    IoStatus read_seam(size_t w, PointMap& near, std::vector<FaceRecord> (&sides)[2]) {
+        const double window = 2 * seam_reach();
         for (uint32_t side = 0; side < 2; ++side) {
             std::vector<PointRecord> points;
             IoStatus status = read_records(bucket(uint32_t(w) + side), points);
             if (status) status = read_records(faces(uint32_t(w) + side), sides[side]);
             if (!status) return status;
             for (const PointRecord& point : points) {
-                if (std::fabs(point.xyz[axis] - wall) < window) near.add(point);
+                if (std::fabs(point.xyz[summary_.axis] - walls_[w]) < window) near.add(point);
             }
         }
-        // A face's distance to the wall: its nearest corner's; HUGE_VAL when a corner is beyond the window.
-        const auto distance = [&](const FaceRecord& face) {
-            double nearest = HUGE_VAL;
-            for (uint64_t id : face.v) {
-                const double* p = near.find(id);
-                if (!p) return HUGE_VAL;
-                nearest = std::min(nearest, std::fabs(p[axis] - wall));
-            }
-            return nearest;
-        };
+        return IoStatus::success();
+    }
+
+    double seam_reach() const { return (STRIP_SPACINGS + MARGIN_SPACINGS) * spacing_; }
+
+    // A face's distance to wall w: its nearest corner's; HUGE_VAL when a corner is not in `near`.
+    double distance_to_wall(const FaceRecord& face, const PointMap& near, size_t w) const {
+        double nearest = HUGE_VAL;
+        for (uint64_t id : face.v) {
+            const double* p = near.find(id);
+            if (!p) return HUGE_VAL;
+            nearest = std::min(nearest, std::fabs(p[summary_.axis] - walls_[w]));
+        }
+        return nearest;
+    }
+
+    IoStatus stitch(size_t w) {
+        const double wall = walls_[w];
+        const int axis = summary_.axis;
+        const double strip = STRIP_SPACINGS * spacing_, reach = seam_reach();
+        PointMap near;
+        std::vector<FaceRecord> sides[2];
+        if (const IoStatus status = read_seam(w, near, sides); !status) return status;
+        const auto distance = [&](const FaceRecord& face) { return distance_to_wall(face, near, w); };
         std::unordered_set<uint64_t> cut_corners;
         for (const auto& side : sides) {
             for (const FaceRecord& face : side) {
@@ -356,6 +368,46 @@ private:
         dbrg_tile_mesh_destroy(mesh);
         IoStatus status = write_records(faces(uint32_t(w)), kept[0]);
         return status ? write_records(faces(uint32_t(w) + 1), kept[1]) : status;
+    }
+
+    // The assembly's manifold check, at wall w once every wall is stitched: the faces of the two slabs
+    // around it with a corner where a face within the stitch's reach has one, checked around those corners
+    // (faces_breaking_manifold); the faces it leaves out leave their files. Only there do pieces grown apart
+    // meet: a slab's own faces and a stitch's are each a manifold.
+    IoStatus check_seam(size_t w) {
+        PointMap near;
+        std::vector<FaceRecord> sides[2];
+        if (const IoStatus status = read_seam(w, near, sides); !status) return status;
+        std::unordered_set<uint64_t> checked;
+        for (const auto& side : sides) {
+            for (const FaceRecord& face : side) {
+                if (distance_to_wall(face, near, w) < seam_reach()) checked.insert(face.v, face.v + 3);
+            }
+        }
+        std::vector<uint64_t> selected;
+        std::vector<std::pair<uint32_t, size_t>> origin;  // (side, index) of each selected face
+        for (uint32_t side = 0; side < 2; ++side) {
+            for (size_t f = 0; f < sides[side].size(); ++f) {
+                const FaceRecord& face = sides[side][f];
+                if (!checked.count(face.v[0]) && !checked.count(face.v[1]) && !checked.count(face.v[2])) continue;
+                selected.insert(selected.end(), face.v, face.v + 3);
+                origin.emplace_back(side, f);
+            }
+        }
+        const std::vector<size_t> out = faces_breaking_manifold(selected.data(), origin.size(), checked);
+        if (out.empty()) return IoStatus::success();
+        report_.seam_faces_dropped += out.size();
+        std::vector<uint8_t> gone[2] = {std::vector<uint8_t>(sides[0].size(), 0), std::vector<uint8_t>(sides[1].size(), 0)};
+        for (size_t i : out) gone[origin[i].first][origin[i].second] = 1;
+        IoStatus status = IoStatus::success();
+        for (uint32_t side = 0; status && side < 2; ++side) {
+            std::vector<FaceRecord> kept;
+            for (size_t f = 0; f < sides[side].size(); ++f) {
+                if (!gone[side][f]) kept.push_back(sides[side][f]);
+            }
+            status = write_records(faces(uint32_t(w) + side), kept);
+        }
+        return status;
     }
 
     // Orients slab k's faces consistently within each of their edge-connected pieces (a walk from the

@@ -1,7 +1,8 @@
 // Out-of-core reconstruction: a cloud file larger than memory reconstructed as slabs one after another,
 // with only one slab's points, or one seam's, in memory at a time: the points sorted into per-slab bucket
-// files, each slab's owned faces to disk, each wall stitched from the points and faces near it, the
-// pieces oriented together by a parity union-find, and the mesh streamed out as binary PLY
+// files, each slab's owned faces to disk, each wall stitched from the points and faces near it and then
+// checked for a manifold, the pieces oriented together by a parity union-find, and the mesh streamed out as
+// binary PLY
 // (docs/tiles.md, "Out of core"). Point ids are 64-bit throughout.
 #pragma once
 
@@ -37,6 +38,7 @@ struct Report {
     uint32_t tiles = 0;            // slabs run
     size_t tile_peak_bytes = 0;    // the most one tile or one stitch held through the library's allocator
     uint64_t orientation_conflicts = 0;  // seam edges whose pieces could not be turned to agree
+    uint64_t seam_faces_dropped = 0;     // faces left out at the seams so that the mesh is a manifold
     double spacing = 0;
 };
 
