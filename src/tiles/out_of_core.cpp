@@ -3,8 +3,11 @@
 #include "tiles/out_of_core.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -192,11 +195,15 @@ public:
         if (status) status = progress(DBRG_STAGE_OUTPUT, 0.0);
         std::vector<PieceFacts> pieces;
         std::vector<std::vector<BorderEdge>> borders(tiles_);
+        unoriented_.assign(tiles_, 0);
         for (uint32_t k = 0; status && k < tiles_; ++k) status = orient_slab(k, pieces, borders[k]);
         if (!status) return status;
         std::vector<uint8_t> flip;
         orient_pieces(pieces, borders, flip);
-        return write_output(flip);
+        for (uint32_t k = 0; status && k < tiles_; ++k) {
+            if (unoriented_[k]) status = leave_out_unoriented(k, flip);
+        }
+        return status ? write_output(flip) : status;
     }
 
 private:
@@ -484,6 +491,16 @@ private:
         for (uint32_t f = 0; f < slab_faces.size(); ++f) {
             if (flip[f]) std::swap(slab_faces[f].v[1], slab_faces[f].v[2]);
         }
+        // A piece that cannot be oriented (its walk turned a face against a neighbour reached another way).
+        for (size_t i = 0; i < uses.size();) {
+            size_t j = i;
+            while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
+            if (j - i == 2 && (uses[i].forward ^ flip[uses[i].face]) == (uses[i + 1].forward ^ flip[uses[i + 1].face])) {
+                ++report_.orientation_conflicts;
+                unoriented_[k] = 1;
+            }
+            i = j;
+        }
         for (size_t i = 0; i < uses.size();) {
             size_t j = i;
             while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
@@ -541,7 +558,10 @@ private:
                 while (j < right.size() && right[j] < edge) ++j;
                 if (j == right.size() || edge < right[j]) continue;
                 const BorderEdge& other = right[j++];
-                if (!sets.join(edge.piece, other.piece, edge.forward == other.forward)) ++report_.orientation_conflicts;
+                if (!sets.join(edge.piece, other.piece, edge.forward == other.forward)) {
+                    ++report_.orientation_conflicts;
+                    unoriented_[w] = unoriented_[w + 1] = 1;
+                }
                 pieces[edge.piece].open_edges -= 1;
                 pieces[other.piece].open_edges -= 1;
             }
@@ -578,6 +598,93 @@ private:
             const bool turn = total.open_edges == 0 ? total.volume < 0 : !total.top_up;
             flip[p] = uint8_t(parity) ^ uint8_t(turn);
         }
+    }
+
+    // Leaves out faces until every edge of slab k's faces runs opposite ways in its two faces once the pieces
+    // are turned (`flip`), as the assembly leaves out a face that would run an edge the way its neighbour
+    // does: pieces that could not be turned to agree across a wall, or a piece that cannot be oriented
+    // itself (stitched faces joined to a slab's own in a twisted band). Of two faces running an edge the
+    // same way, the one whose corners sort later goes; then the pinches that leaves at its corners
+    // (faces_breaking_manifold). The neighbouring slabs are read too: a face of slab k shares its corners
+    // with theirs, and they lose faces here as well.
+    IoStatus leave_out_unoriented(uint32_t k, const std::vector<uint8_t>& flip) {
+        const uint32_t first = k > 0 ? k - 1 : 0, last = std::min(k + 1, tiles_ - 1);
+        std::vector<std::vector<FaceRecord>> slabs(last - first + 1);
+        std::vector<std::vector<uint32_t>> piece_of(slabs.size());
+        for (uint32_t s = 0; s < slabs.size(); ++s) {
+            IoStatus status = read_records(faces(first + s), slabs[s]);
+            if (status) status = read_records(piece_file(first + s), piece_of[s]);
+            if (!status) return status;
+        }
+        struct Use {
+            uint64_t low, high;
+            uint32_t slab;
+            size_t face;
+            uint8_t forward;  // the face, turned as its piece is, runs low -> high
+        };
+        std::vector<Use> uses;
+        for (uint32_t s = 0; s < slabs.size(); ++s) {
+            for (size_t f = 0; f < slabs[s].size(); ++f) {
+                const bool turned = flip[piece_of[s][f]] != 0;
+                for (int i = 0; i < 3; ++i) {
+                    const uint64_t a = slabs[s][f].v[i], b = slabs[s][f].v[(i + 1) % 3];
+                    uses.push_back({std::min(a, b), std::max(a, b), s, f, uint8_t((a < b) != turned)});
+                }
+            }
+        }
+        std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
+            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.slab != y.slab ? x.slab < y.slab : x.face < y.face;
+        });
+        const auto sorted_corners = [&](uint32_t s, size_t f) {
+            std::array<uint64_t, 3> corners{slabs[s][f].v[0], slabs[s][f].v[1], slabs[s][f].v[2]};
+            std::sort(corners.begin(), corners.end());
+            return corners;
+        };
+        std::vector<std::vector<uint8_t>> gone(slabs.size());
+        for (uint32_t s = 0; s < slabs.size(); ++s) gone[s].assign(slabs[s].size(), 0);
+        std::unordered_set<uint64_t> checked;
+        const uint32_t own = k - first;
+        for (size_t i = 0; i < uses.size();) {
+            size_t j = i;
+            while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
+            const Use& x = uses[i];
+            const Use& y = uses[i + 1];
+            if (j - i == 2 && x.forward == y.forward && (x.slab == own || y.slab == own) && !gone[x.slab][x.face] &&
+                !gone[y.slab][y.face]) {
+                const Use& later = sorted_corners(y.slab, y.face) < sorted_corners(x.slab, x.face) ? x : y;
+                gone[later.slab][later.face] = 1;
+                checked.insert(slabs[later.slab][later.face].v, slabs[later.slab][later.face].v + 3);
+            }
+            i = j;
+        }
+        std::vector<uint64_t> selected;
+        std::vector<std::pair<uint32_t, size_t>> origin;
+        for (uint32_t s = 0; s < slabs.size(); ++s) {
+            for (size_t f = 0; f < slabs[s].size(); ++f) {
+                const FaceRecord& face = slabs[s][f];
+                if (gone[s][f] || (!checked.count(face.v[0]) && !checked.count(face.v[1]) && !checked.count(face.v[2]))) continue;
+                selected.insert(selected.end(), face.v, face.v + 3);
+                origin.emplace_back(s, f);
+            }
+        }
+        for (size_t i : faces_breaking_manifold(selected.data(), origin.size(), checked)) gone[origin[i].first][origin[i].second] = 1;
+        IoStatus status = IoStatus::success();
+        for (uint32_t s = 0; status && s < slabs.size(); ++s) {
+            std::vector<FaceRecord> kept;
+            std::vector<uint32_t> kept_pieces;
+            for (size_t f = 0; f < slabs[s].size(); ++f) {
+                if (gone[s][f]) {
+                    ++report_.seam_faces_dropped;
+                    continue;
+                }
+                kept.push_back(slabs[s][f]);
+                kept_pieces.push_back(piece_of[s][f]);
+            }
+            if (kept.size() == slabs[s].size()) continue;
+            status = write_records(faces(first + s), kept);
+            if (status) status = write_records(piece_file(first + s), kept_pieces);
+        }
+        return status;
     }
 
     // The input's points in input order, then every slab's faces, turned as `flip` says.
@@ -624,6 +731,7 @@ private:
     CloudSummary summary_;
     double spacing_ = 0;
     std::unordered_set<uint64_t> outliers_;  // the slabs' outliers: a stitch gets them only as faces' corners
+    std::vector<uint8_t> unoriented_;  // per slab: some of its faces cannot be turned to agree with a neighbour
     std::vector<double> walls_;
     uint32_t tiles_ = 1;
     TempFolder folder_;

@@ -2,8 +2,7 @@
 // with only one slab's points, or one seam's, in memory at a time: the points sorted into per-slab bucket
 // files, each slab's owned faces to disk, each wall stitched from the points and faces near it and then
 // checked for a manifold, the pieces oriented together by a parity union-find, and the mesh streamed out as
-// binary PLY
-// (docs/tiles.md, "Out of core"). Point ids are 64-bit throughout.
+// binary PLY (docs/tiles.md, "Out of core"). Point ids are 64-bit throughout.
 #pragma once
 
 #include <cstdint>
@@ -37,8 +36,8 @@ struct Report {
     uint64_t components = 0;
     uint32_t tiles = 0;            // slabs run
     size_t tile_peak_bytes = 0;    // the most one tile or one stitch held through the library's allocator
-    uint64_t orientation_conflicts = 0;  // seam edges whose pieces could not be turned to agree
-    uint64_t seam_faces_dropped = 0;     // faces left out at the seams so that the mesh is a manifold
+    uint64_t orientation_conflicts = 0;  // edges whose two faces could not be turned to agree (a face left out)
+    uint64_t seam_faces_dropped = 0;     // faces left out so that the mesh is an oriented manifold
     double spacing = 0;
 };
 
