@@ -12,7 +12,6 @@
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
-#include <map>
 #include <random>
 #include <set>
 #include <string>
@@ -491,7 +490,8 @@ TEST_CASE("a memory budget sets the number of slabs, and no tile holds more than
 namespace {
 
 // The faces left out by faces_breaking_manifold, as sorted corner triples.
-std::set<std::array<uint64_t, 3>> left_out(const std::vector<uint64_t>& faces, const std::unordered_set<uint64_t>& checked) {
+std::set<std::array<uint64_t, 3>> left_out(const std::vector<uint64_t>& faces,
+                                           const std::unordered_set<uint64_t>& checked) {
     std::set<std::array<uint64_t, 3>> out;
     for (size_t f : out_of_core::faces_breaking_manifold(faces.data(), faces.size() / 3, checked)) {
         std::array<uint64_t, 3> corners{faces[3 * f], faces[3 * f + 1], faces[3 * f + 2]};
@@ -523,10 +523,13 @@ TEST_CASE("the seam check leaves out repeated faces, third faces on an edge and 
     // A second fan of two faces touching the first at 0 only: the vertex keeps the larger, the fan of six.
     std::vector<uint64_t> pinched = fan;
     pinched.insert(pinched.end(), {big, big + 7, big + 8, big, big + 8, big + 9});
-    CHECK(left_out(pinched, centre) == std::set<std::array<uint64_t, 3>>{{big, big + 7, big + 8}, {big, big + 8, big + 9}});
+    CHECK(left_out(pinched, centre) ==
+          std::set<std::array<uint64_t, 3>>{{big, big + 7, big + 8}, {big, big + 8, big + 9}});
     // Given in another order, the same faces are left out.
     std::vector<uint64_t> reversed;
-    for (size_t f = pinched.size() / 3; f-- > 0;) reversed.insert(reversed.end(), pinched.begin() + 3 * f, pinched.begin() + 3 * f + 3);
+    for (size_t f = pinched.size() / 3; f-- > 0;) {
+        reversed.insert(reversed.end(), pinched.begin() + 3 * f, pinched.begin() + 3 * f + 3);
+    }
     CHECK(left_out(reversed, centre) == left_out(pinched, centre));
     // A vertex not checked is not looked at: the pinch at 0 stays when only the ring is checked, and the
     // fin too when neither end of its edge is checked.
@@ -545,7 +548,8 @@ TEST_CASE("out of core, a Moebius band comes out an oriented manifold: faces are
     const int around = 400, across = 16;
     for (int i = 0; i < around; ++i) {
         for (int j = 0; j < across; ++j) {
-            const double u = 2 * M_PI * (i + jitter(random)) / around, v = 0.25 * (2 * (j + 0.5 + jitter(random)) / across - 1);
+            const double u = 2 * M_PI * (i + jitter(random)) / around;
+            const double v = 0.25 * (2 * (j + 0.5 + jitter(random)) / across - 1);
             xyz.insert(xyz.end(), {(1 + v * std::cos(u / 2)) * std::cos(u), (1 + v * std::cos(u / 2)) * std::sin(u),
                                    v * std::sin(u / 2)});
         }
@@ -555,9 +559,11 @@ TEST_CASE("out of core, a Moebius band comes out an oriented manifold: faces are
         CAPTURE(tiles);
         const FileRun run = reconstruct_file(folder, xyz, tiles);
         REQUIRE_MESSAGE(run.status, run.status.message);
-        MESSAGE(tiles << " slabs: " << run.report.orientation_conflicts << " conflicts, " << run.report.seam_faces_dropped
-                      << " faces left out of " << run.triangles.size() / 3);
-        test::require_valid_manifold(test::report_of(xyz, run.triangles));
+        MESSAGE(tiles << " slabs: " << run.report.orientation_conflicts << " conflicts, "
+                      << run.report.seam_faces_dropped << " faces left out of " << run.triangles.size() / 3);
+        const measure::MeshReport report = test::report_of(xyz, run.triangles);
+        test::require_valid_manifold(report);
+        CHECK(run.report.boundary_edges == report.edges_boundary);  // counted again where faces were left out
         CHECK(run.report.orientation_conflicts > 0);
         CHECK(run.report.seam_faces_dropped > 0);
     }
@@ -587,8 +593,10 @@ TEST_CASE("out-of-core meshes of the shared data are manifolds, the seams checke
             const measure::MeshReport report = test::report_of(given.positions, run.triangles);
             MESSAGE(name << " at " << tiles << ": " << run.report.seam_faces_dropped << " seam faces left out ("
                          << tiled.stats.seam_faces_dropped << " by --tiles), " << run.report.orientation_conflicts
-                         << " orientation conflicts; face agreement with --tiles " << face_agreement(run.triangles, tiled.triangles));
+                         << " orientation conflicts; face agreement with --tiles "
+                         << face_agreement(run.triangles, tiled.triangles));
             test::require_valid_manifold(report);
+            CHECK(run.report.boundary_edges == report.edges_boundary);
         }
     }
 }

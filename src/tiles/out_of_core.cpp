@@ -5,9 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <numeric>
-#include <set>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -41,6 +40,44 @@ struct PointMap {
         if (index.emplace(point.id, uint32_t(xyz.size())).second) xyz.push_back({point.xyz[0], point.xyz[1], point.xyz[2]});
     }
 };
+
+// Faces of several slab files, one list a slab, with a flag a face for those left out.
+using SlabFaces = std::vector<std::vector<FaceRecord>>;
+using LeftOut = std::vector<std::vector<uint8_t>>;
+
+LeftOut none_left_out(const SlabFaces& slabs) {
+    LeftOut left_out(slabs.size());
+    for (size_t s = 0; s < slabs.size(); ++s) left_out[s].assign(slabs[s].size(), 0);
+    return left_out;
+}
+
+// The records whose flag in `left_out` is clear, in order.
+template <class Record>
+std::vector<Record> without(const std::vector<Record>& records, const std::vector<uint8_t>& left_out) {
+    std::vector<Record> kept;
+    for (size_t i = 0; i < records.size(); ++i) {
+        if (!left_out[i]) kept.push_back(records[i]);
+    }
+    return kept;
+}
+
+// Flags in `left_out` the faces that faces_breaking_manifold leaves out around `checked`, looking at the
+// faces of `slabs` not left out yet that have a corner there.
+void leave_out_breaking(const SlabFaces& slabs, const std::unordered_set<uint64_t>& checked, LeftOut& left_out) {
+    std::vector<uint64_t> corners;
+    std::vector<std::pair<size_t, size_t>> origin;  // (slab, index) of each face looked at
+    for (size_t s = 0; s < slabs.size(); ++s) {
+        for (size_t f = 0; f < slabs[s].size(); ++f) {
+            const uint64_t* v = slabs[s][f].v;
+            if (left_out[s][f] || (!checked.count(v[0]) && !checked.count(v[1]) && !checked.count(v[2]))) continue;
+            corners.insert(corners.end(), v, v + 3);
+            origin.emplace_back(s, f);
+        }
+    }
+    for (size_t i : faces_breaking_manifold(corners.data(), origin.size(), checked)) {
+        left_out[origin[i].first][origin[i].second] = 1;
+    }
+}
 
 // The triangle's centroid on `axis` as TileCore::owns computes it: the corners summed in lexicographic
 // order of their coordinates, so every step assigns a face to the same side of a wall.
@@ -191,7 +228,10 @@ public:
                 if (status) status = stitch(w);
             }
         }
-        for (size_t w = 0; status && w < walls_.size(); ++w) status = check_seam(w);
+        for (size_t w = 0; status && w < walls_.size(); ++w) {
+            status = progress(DBRG_STAGE_FILL_HOLES, 1.0);
+            if (status) status = check_seam(w);
+        }
         if (status) status = progress(DBRG_STAGE_OUTPUT, 0.0);
         std::vector<PieceFacts> pieces;
         std::vector<std::vector<BorderEdge>> borders(tiles_);
@@ -201,7 +241,8 @@ public:
         std::vector<uint8_t> flip;
         orient_pieces(pieces, borders, flip);
         for (uint32_t k = 0; status && k < tiles_; ++k) {
-            if (unoriented_[k]) status = leave_out_unoriented(k, flip);
+            if (unoriented_[k]) status = progress(DBRG_STAGE_OUTPUT, 0.0);
+            if (status && unoriented_[k]) status = leave_out_unoriented(k, flip);
         }
         return status ? write_output(flip) : status;
     }
@@ -268,13 +309,12 @@ private:
         return write_records(faces(k), owned);
     }
 
-    // Stitches wall w from the points and faces near it (those of the slabs on either side), then puts
-    // the faces back in the two slabs' files by the side of the wall their centroid is on.
     // The points of the slabs on either side of wall w within twice the stitch's reach of it, and the
     // faces of both slabs. Both buckets hold every point within a halo of the wall, and each reaches a slab
     // (12 spacings) further on its side: twice the reach keeps the corners of every face near the wall.
-    IoStatus read_seam(size_t w, PointMap& near, std::vector<FaceRecord> (&sides)[2]) {
+    IoStatus read_seam(size_t w, PointMap& near, SlabFaces& sides) {
         const double window = 2 * seam_reach();
+        sides.assign(2, {});
         for (uint32_t side = 0; side < 2; ++side) {
             std::vector<PointRecord> points;
             IoStatus status = read_records(bucket(uint32_t(w) + side), points);
@@ -300,12 +340,14 @@ private:
         return nearest;
     }
 
+    // Stitches wall w from the points and faces near it (those of the slabs on either side), then puts
+    // the faces back in the two slabs' files by the side of the wall their centroid is on.
     IoStatus stitch(size_t w) {
         const double wall = walls_[w];
         const int axis = summary_.axis;
         const double strip = STRIP_SPACINGS * spacing_, reach = seam_reach();
         PointMap near;
-        std::vector<FaceRecord> sides[2];
+        SlabFaces sides;
         if (const IoStatus status = read_seam(w, near, sides); !status) return status;
         const auto distance = [&](const FaceRecord& face) { return distance_to_wall(face, near, w); };
         std::unordered_set<uint64_t> cut_corners;
@@ -357,14 +399,9 @@ private:
         note_peak(mesh);
         uint64_t dropped_count = 0;
         const uint64_t* dropped = dbrg_tile_mesh_dropped(mesh, &dropped_count);
-        std::vector<uint8_t> gone[2] = {std::vector<uint8_t>(sides[0].size(), 0), std::vector<uint8_t>(sides[1].size(), 0)};
+        LeftOut gone = none_left_out(sides);
         for (uint64_t i = 0; i < dropped_count; ++i) gone[origin[dropped[i]].first][origin[dropped[i]].second] = 1;
-        std::vector<FaceRecord> kept[2];
-        for (uint32_t side = 0; side < 2; ++side) {
-            for (size_t f = 0; f < sides[side].size(); ++f) {
-                if (!gone[side][f]) kept[side].push_back(sides[side][f]);
-            }
-        }
+        std::vector<FaceRecord> kept[2] = {without(sides[0], gone[0]), without(sides[1], gone[1])};
         const uint64_t* added = dbrg_tile_mesh_triangles(mesh);
         for (uint64_t f = 0; f < dbrg_tile_mesh_triangle_count(mesh); ++f) {
             FaceRecord face;
@@ -383,7 +420,7 @@ private:
     // meet: a slab's own faces and a stitch's are each a manifold.
     IoStatus check_seam(size_t w) {
         PointMap near;
-        std::vector<FaceRecord> sides[2];
+        SlabFaces sides;
         if (const IoStatus status = read_seam(w, near, sides); !status) return status;
         std::unordered_set<uint64_t> checked;
         for (const auto& side : sides) {
@@ -391,28 +428,14 @@ private:
                 if (distance_to_wall(face, near, w) < seam_reach()) checked.insert(face.v, face.v + 3);
             }
         }
-        std::vector<uint64_t> selected;
-        std::vector<std::pair<uint32_t, size_t>> origin;  // (side, index) of each selected face
-        for (uint32_t side = 0; side < 2; ++side) {
-            for (size_t f = 0; f < sides[side].size(); ++f) {
-                const FaceRecord& face = sides[side][f];
-                if (!checked.count(face.v[0]) && !checked.count(face.v[1]) && !checked.count(face.v[2])) continue;
-                selected.insert(selected.end(), face.v, face.v + 3);
-                origin.emplace_back(side, f);
-            }
-        }
-        const std::vector<size_t> out = faces_breaking_manifold(selected.data(), origin.size(), checked);
-        if (out.empty()) return IoStatus::success();
-        report_.seam_faces_dropped += out.size();
-        std::vector<uint8_t> gone[2] = {std::vector<uint8_t>(sides[0].size(), 0), std::vector<uint8_t>(sides[1].size(), 0)};
-        for (size_t i : out) gone[origin[i].first][origin[i].second] = 1;
+        LeftOut gone = none_left_out(sides);
+        leave_out_breaking(sides, checked, gone);
         IoStatus status = IoStatus::success();
         for (uint32_t side = 0; status && side < 2; ++side) {
-            std::vector<FaceRecord> kept;
-            for (size_t f = 0; f < sides[side].size(); ++f) {
-                if (!gone[side][f]) kept.push_back(sides[side][f]);
-            }
-            status = write_records(faces(uint32_t(w) + side), kept);
+            const size_t count = std::count(gone[side].begin(), gone[side].end(), 1);
+            if (count == 0) continue;
+            report_.seam_faces_dropped += count;
+            status = write_records(faces(uint32_t(w) + side), without(sides[side], gone[side]));
         }
         return status;
     }
@@ -491,23 +514,19 @@ private:
         for (uint32_t f = 0; f < slab_faces.size(); ++f) {
             if (flip[f]) std::swap(slab_faces[f].v[1], slab_faces[f].v[2]);
         }
-        // A piece that cannot be oriented (its walk turned a face against a neighbour reached another way).
+        // The edges one face uses: the slab's border, where pieces meet across the walls. An edge two faces
+        // run the same way: a piece that cannot be oriented (its walk turned a face against a neighbour
+        // reached another way).
         for (size_t i = 0; i < uses.size();) {
             size_t j = i;
             while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
-            if (j - i == 2 && (uses[i].forward ^ flip[uses[i].face]) == (uses[i + 1].forward ^ flip[uses[i + 1].face])) {
-                ++report_.orientation_conflicts;
-                unoriented_[k] = 1;
-            }
-            i = j;
-        }
-        for (size_t i = 0; i < uses.size();) {
-            size_t j = i;
-            while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
+            const Use& use = uses[i];
             if (j - i == 1) {
-                const Use& use = uses[i];
                 pieces[piece_of[use.face]].open_edges += 1;
                 border.push_back({use.low, use.high, piece_of[use.face], uint8_t(use.forward ^ flip[use.face])});
+            } else if (j - i == 2 && (use.forward ^ flip[use.face]) == (uses[i + 1].forward ^ flip[uses[i + 1].face])) {
+                ++report_.orientation_conflicts;
+                unoriented_[k] = 1;
             }
             i = j;
         }
@@ -606,10 +625,12 @@ private:
     // itself (stitched faces joined to a slab's own in a twisted band). Of two faces running an edge the
     // same way, the one whose corners sort later goes; then the pinches that leaves at its corners
     // (faces_breaking_manifold). The neighbouring slabs are read too: a face of slab k shares its corners
-    // with theirs, and they lose faces here as well.
+    // with theirs, and they lose faces here as well. (Three slabs' faces at once, more than a slab's
+    // reconstruction holds of them, but only for a slab where such an edge was found.) The boundary edges
+    // reported are corrected over those three slabs.
     IoStatus leave_out_unoriented(uint32_t k, const std::vector<uint8_t>& flip) {
         const uint32_t first = k > 0 ? k - 1 : 0, last = std::min(k + 1, tiles_ - 1);
-        std::vector<std::vector<FaceRecord>> slabs(last - first + 1);
+        SlabFaces slabs(last - first + 1);
         std::vector<std::vector<uint32_t>> piece_of(slabs.size());
         for (uint32_t s = 0; s < slabs.size(); ++s) {
             IoStatus status = read_records(faces(first + s), slabs[s]);
@@ -619,12 +640,12 @@ private:
         struct Use {
             uint64_t low, high;
             uint32_t slab;
-            size_t face;
+            uint32_t face;
             uint8_t forward;  // the face, turned as its piece is, runs low -> high
         };
         std::vector<Use> uses;
         for (uint32_t s = 0; s < slabs.size(); ++s) {
-            for (size_t f = 0; f < slabs[s].size(); ++f) {
+            for (uint32_t f = 0; f < slabs[s].size(); ++f) {
                 const bool turned = flip[piece_of[s][f]] != 0;
                 for (int i = 0; i < 3; ++i) {
                     const uint64_t a = slabs[s][f].v[i], b = slabs[s][f].v[(i + 1) % 3];
@@ -633,56 +654,45 @@ private:
             }
         }
         std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) {
-            return x.low != y.low ? x.low < y.low : x.high != y.high ? x.high < y.high : x.slab != y.slab ? x.slab < y.slab : x.face < y.face;
+            return std::tie(x.low, x.high, x.slab, x.face) < std::tie(y.low, y.high, y.slab, y.face);
         });
-        const auto sorted_corners = [&](uint32_t s, size_t f) {
-            std::array<uint64_t, 3> corners{slabs[s][f].v[0], slabs[s][f].v[1], slabs[s][f].v[2]};
-            std::sort(corners.begin(), corners.end());
-            return corners;
-        };
-        std::vector<std::vector<uint8_t>> gone(slabs.size());
-        for (uint32_t s = 0; s < slabs.size(); ++s) gone[s].assign(slabs[s].size(), 0);
+        LeftOut gone = none_left_out(slabs);
         std::unordered_set<uint64_t> checked;
         const uint32_t own = k - first;
-        for (size_t i = 0; i < uses.size();) {
-            size_t j = i;
-            while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high) ++j;
+        const auto for_each_edge = [&](auto&& visit) {
+            for (size_t i = 0, j; i < uses.size(); i = j) {
+                for (j = i + 1; j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high;) ++j;
+                visit(i, j);
+            }
+        };
+        for_each_edge([&](size_t i, size_t j) {
+            if (j - i != 2) return;
             const Use& x = uses[i];
             const Use& y = uses[i + 1];
-            if (j - i == 2 && x.forward == y.forward && (x.slab == own || y.slab == own) && !gone[x.slab][x.face] &&
-                !gone[y.slab][y.face]) {
-                const Use& later = sorted_corners(y.slab, y.face) < sorted_corners(x.slab, x.face) ? x : y;
-                gone[later.slab][later.face] = 1;
-                checked.insert(slabs[later.slab][later.face].v, slabs[later.slab][later.face].v + 3);
+            if (x.forward != y.forward || (x.slab != own && y.slab != own) || gone[x.slab][x.face] ||
+                gone[y.slab][y.face]) {
+                return;
             }
-            i = j;
-        }
-        std::vector<uint64_t> selected;
-        std::vector<std::pair<uint32_t, size_t>> origin;
-        for (uint32_t s = 0; s < slabs.size(); ++s) {
-            for (size_t f = 0; f < slabs[s].size(); ++f) {
-                const FaceRecord& face = slabs[s][f];
-                if (gone[s][f] || (!checked.count(face.v[0]) && !checked.count(face.v[1]) && !checked.count(face.v[2]))) continue;
-                selected.insert(selected.end(), face.v, face.v + 3);
-                origin.emplace_back(s, f);
-            }
-        }
-        for (size_t i : faces_breaking_manifold(selected.data(), origin.size(), checked)) gone[origin[i].first][origin[i].second] = 1;
+            const bool x_later = sorted_corners(slabs[y.slab][y.face].v) < sorted_corners(slabs[x.slab][x.face].v);
+            const Use& later = x_later ? x : y;
+            gone[later.slab][later.face] = 1;
+            checked.insert(slabs[later.slab][later.face].v, slabs[later.slab][later.face].v + 3);
+        });
+        leave_out_breaking(slabs, checked, gone);
+        // An edge of a face left out was a boundary edge if it had one face, and is one if one face is left.
+        for_each_edge([&](size_t i, size_t j) {
+            size_t left = 0;
+            for (size_t u = i; u < j; ++u) left += !gone[uses[u].slab][uses[u].face];
+            if (left == j - i) return;
+            report_.boundary_edges = report_.boundary_edges + (left == 1) - (j - i == 1);
+        });
         IoStatus status = IoStatus::success();
         for (uint32_t s = 0; status && s < slabs.size(); ++s) {
-            std::vector<FaceRecord> kept;
-            std::vector<uint32_t> kept_pieces;
-            for (size_t f = 0; f < slabs[s].size(); ++f) {
-                if (gone[s][f]) {
-                    ++report_.seam_faces_dropped;
-                    continue;
-                }
-                kept.push_back(slabs[s][f]);
-                kept_pieces.push_back(piece_of[s][f]);
-            }
-            if (kept.size() == slabs[s].size()) continue;
-            status = write_records(faces(first + s), kept);
-            if (status) status = write_records(piece_file(first + s), kept_pieces);
+            const size_t count = std::count(gone[s].begin(), gone[s].end(), 1);
+            if (count == 0) continue;
+            report_.seam_faces_dropped += count;
+            status = write_records(faces(first + s), without(slabs[s], gone[s]));
+            if (status) status = write_records(piece_file(first + s), without(piece_of[s], gone[s]));
         }
         return status;
     }

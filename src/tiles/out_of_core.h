@@ -33,7 +33,7 @@ struct Report {
     uint64_t points = 0;
     uint64_t triangles = 0;
     uint64_t boundary_edges = 0;
-    uint64_t components = 0;
+    uint64_t components = 0;  // counted before faces are left out where pieces cannot be turned to agree
     uint32_t tiles = 0;            // slabs run
     size_t tile_peak_bytes = 0;    // the most one tile or one stitch held through the library's allocator
     uint64_t orientation_conflicts = 0;  // edges whose two faces could not be turned to agree (a face left out)

@@ -2,7 +2,6 @@
 #include "tiles/seam_manifold.h"
 
 #include <algorithm>
-#include <array>
 #include <map>
 #include <numeric>
 #include <set>
@@ -13,12 +12,6 @@ namespace {
 using Corners = std::array<uint64_t, 3>;
 using Edge = std::pair<uint64_t, uint64_t>;
 
-Corners sorted_corners(const uint64_t* face) {
-    Corners corners{face[0], face[1], face[2]};
-    std::sort(corners.begin(), corners.end());
-    return corners;
-}
-
 Edge edge_of(uint64_t a, uint64_t b) { return {std::min(a, b), std::max(a, b)}; }
 
 // Union-find over the few faces around one vertex.
@@ -28,6 +21,12 @@ size_t root_of(std::vector<size_t>& parent, size_t i) {
 }
 
 } // namespace
+
+Corners sorted_corners(const uint64_t* face) {
+    Corners corners{face[0], face[1], face[2]};
+    std::sort(corners.begin(), corners.end());
+    return corners;
+}
 
 std::vector<size_t> faces_breaking_manifold(const uint64_t* faces, size_t count,
                                             const std::unordered_set<uint64_t>& checked) {

@@ -7,10 +7,11 @@ call, on the same points. Not a test: run it by hand on a release build.
 
 Every run is a fresh child process (and, for Dask, a fresh LocalCluster of one-thread worker processes), the
 configurations alternating within each repeat. With --warm a Dask run is the cluster's second on the points,
-as on a cluster that serves run after run; else its first, worker start-up costs included. Reported per run: wall seconds, processor seconds of the
-child and of the Dask workers (getrusage, read on each worker before the cluster closes) — processor time
-because the machine may be shared — and the peak resident set of the child (which holds the cloud and the
-mesh) and of the largest worker. Every run's faces are compared with the first tiled run's.
+as on a cluster that serves run after run; else its first, worker start-up costs included. Reported per run:
+wall seconds, processor seconds of the child and of the Dask workers (getrusage, read on each worker before
+the cluster closes) — processor time because the machine may be shared — and the peak resident set of the
+child (which holds the cloud and the mesh) and of the largest worker. Every run's faces are compared with
+the first tiled run's.
 """
 import argparse
 import ctypes

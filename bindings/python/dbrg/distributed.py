@@ -6,7 +6,8 @@
 
 The driver runs the steps of the C library's tiled loop (dbrg_reconstruct_tiled) as Dask tasks and gives the
 same mesh: the plan (here), one task per slab (dbrg_reconstruct_tile), one task per wall
-(dbrg_seam_stitch: the even walls, then the odd ones), and the assembly (here, dbrg_mesh_assemble). Every
+(dbrg_seam_stitch, sent as soon as its input is known: _Stitching), and the assembly (here,
+dbrg_mesh_assemble). Every
 task is a pure function of the points and faces it is sent, so a task whose worker fails or is killed is
 run again and the mesh does not change; the mesh depends on the tiling, never on the number of workers or
 the order in which tasks finish. Each task is sent its own points only, inside the task (not scattered:
@@ -318,11 +319,14 @@ class _Source:
 
 class _Stitch:
     """A wall's stitch: the sources it may read (the tiles; for an odd wall also the even walls' stitches'),
-    the source of the faces it adds, and once sent, the faces it was given as (source, indices) pairs."""
+    the source of the faces it adds, and once sent, the faces it was given as (source, indices) pairs and its
+    task's key."""
 
     def __init__(self, wall, odd, reads, added):
         self.wall, self.odd, self.reads, self.added = wall, odd, reads, added
-        self.near = self.given = self.future = None
+        # Once the sources reaching the wall are done: the points near it and where its input may reach.
+        self.near = self.reach = None
+        self.given = self.key = None
 
     def choices(self, source):
         """The indices of the faces of `source` this stitch chooses from: an even wall's stitch all the
@@ -349,22 +353,27 @@ def _stitch_input(stitch, axis_values, coordinate, reach):
     them. Every corner of a source's faces lies where the source reaches, so only the sources reaching the
     wall hold faces of the first kind, and only those reaching the first ones' corners faces of the second:
     once those are done, the input is what it is when every task is done, as in the C loop."""
-    low, high = stitch.wall - reach, stitch.wall + reach
-    first = [source for source in stitch.reads if source.reaches(low, high)]
-    if not all(source.done() for source in first):
-        return None
-    if stitch.near is None:  # the outliers near the wall are known: the tiles holding them are among the first
+    if stitch.reach is None:
+        low, high = stitch.wall - reach, stitch.wall + reach
+        first = [source for source in stitch.reads if source.reaches(low, high)]
+        if not all(source.done() for source in first):
+            return None
+        # Final now: the outliers near the wall are known (the tiles holding them are among the first), and
+        # so are the faces touching the points near it.
         stitch.near = _near(coordinate, stitch.wall, reach)
-    marked = np.zeros(len(coordinate), dtype=bool)
-    marked[stitch.near] = True
-    touching = [source.faces[stitch.choices(source)] for source in first]
-    corners = np.concatenate([faces[_any_corner(marked, faces)].ravel() for faces in touching])
-    corner_low, corner_high = _extent(axis_values[corners])
-    second = [source for source in stitch.reads if source.reaches(min(low, corner_low), max(high, corner_high))]
+        marked = np.zeros(len(coordinate), dtype=bool)
+        marked[stitch.near] = True
+        touching = [source.faces[stitch.choices(source)] for source in first]
+        corners = np.concatenate([np.empty(0, dtype=np.intp)] +
+                                 [faces[_any_corner(marked, faces)].ravel() for faces in touching])
+        corner_low, corner_high = _extent(axis_values[corners])
+        stitch.reach = min(low, corner_low), max(high, corner_high)
+    second = [source for source in stitch.reads if source.reaches(*stitch.reach)]
     if not all(source.done() for source in second):
         return None
     choices = [stitch.choices(source) for source in second]
-    faces = np.concatenate([source.faces[indices] for source, indices in zip(second, choices)])
+    faces = np.concatenate([np.empty((0, 3), dtype=np.uint64)] +
+                           [source.faces[indices] for source, indices in zip(second, choices)])
     given, ids = _seam_input(coordinate, faces, stitch.wall, reach, stitch.near)
     starts = np.cumsum([0] + [len(indices) for indices in choices])
     return ids, [(source, indices[given[(given >= begin) & (given < end)] - begin])
@@ -377,11 +386,12 @@ class _Stitching:
     stitches next to it are (_stitch_input), so that stitches run beside the last tiles and no step waits for
     all; every stitch is still given what it is given when every task before it is done, as in the C loop."""
 
-    def __init__(self, axis_values, tile_points, walls, reach):
+    def __init__(self, axis_values, tile_extents, walls, reach):
+        """tile_extents: (lowest, highest) coordinate on the axis of each tile's points."""
         self.axis_values = axis_values
         self.coordinate = axis_values.copy()  # NaN at the tiles' outliers, as each tile reports them
         self.reach = reach
-        self.tiles = [_Source(*_extent(axis_values[points])) for points in tile_points]
+        self.tiles = [_Source(low, high) for low, high in tile_extents]
         # Until it is sent, an even wall's stitch may be given points as far as the tiles it may read reach.
         self.even = [_Stitch(wall, False, self.tiles, _Source(*_hull_of_reaching(
             self.tiles, *_hull_of_reaching(self.tiles, wall - reach, wall + reach)))) for wall in walls[0::2]]
@@ -434,33 +444,40 @@ def _tiles_and_stitches(client, array, cut, options, progress):
     from distributed import as_completed
     axis_values = array[:, cut.axis]
     index_type = _index_type(len(array))
-    tile_points, tile_futures = [], []
+    tile_extents, tile_futures = [], []
     for k in range(len(cut.walls) + 1):
         low, high = cut.core(k)
         inside = np.flatnonzero((axis_values >= low[cut.axis] - cut.halo) & (axis_values < high[cut.axis] + cut.halo))
-        tile_points.append(inside)
+        tile_extents.append(_extent(axis_values[inside]))
         tile_futures.append(client.submit(tile_task, array[inside], inside.astype(index_type), low, high, options,
                                           pure=False))
-    stitching = _Stitching(axis_values, tile_points, cut.walls, cut.seam_reach)
+    stitching = _Stitching(axis_values, tile_extents, cut.walls, cut.seam_reach)
+    # A finished task's result stays on its worker while a future of it is held: only the progress bar's
+    # thread holds the tiles' until they are all done, and no stitch's is kept.
     bar = _progress_bar(tile_futures) if progress else None
-    tile_of = {future.key: k for k, future in enumerate(tile_futures)}
-    stitch_of, stats = {}, {}
+    tile_keys = [future.key for future in tile_futures]
     running = as_completed(tile_futures, with_results=True)
+    del tile_futures
+    stitch_of, stats = {}, {}
     for future, result in running:
-        if future.key in tile_of:
-            faces, outliers, stats[future.key] = result
-            stitching.tile_done(tile_of[future.key], faces, outliers)
+        key = future.key
+        del future
+        if key in stitch_of:
+            dropped, added, stats[key] = result
+            stitching.stitch_done(stitch_of[key], dropped, added)
         else:
-            dropped, added, stats[future.key] = result
-            stitching.stitch_done(stitch_of[future.key], dropped, added)
+            faces, outliers, stats[key] = result
+            stitching.tile_done(tile_keys.index(key), faces, outliers)
         for stitch, ids, given in stitching.ready():
-            stitch.future = client.submit(stitch_task, array[ids], ids.astype(index_type), given, cut.axis,
-                                          cut.spacing, stitch.wall, options, pure=False)
-            stitch_of[stitch.future.key] = stitch
-            running.add(stitch.future)
+            future = client.submit(stitch_task, array[ids], ids.astype(index_type), given, cut.axis, cut.spacing,
+                                   stitch.wall, options, pure=False)
+            stitch.key = future.key
+            stitch_of[stitch.key] = stitch
+            running.add(future)
+            del future
     if bar is not None:
         bar.join()
-    keys = [future.key for future in tile_futures] + [stitch.future.key for stitch in stitching.even + stitching.odd]
+    keys = tile_keys + [stitch.key for stitch in stitching.even + stitching.odd]
     return stitching.faces(), np.sort(np.concatenate(stitching.outliers)), [stats[key] for key in keys]
 
 
