@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
-#include <set>
 
 namespace dbrg::out_of_core {
 namespace {
@@ -30,19 +29,19 @@ Corners sorted_corners(const uint64_t* face) {
 
 std::vector<size_t> faces_breaking_manifold(const uint64_t* faces, size_t count,
                                             const std::unordered_set<uint64_t>& checked) {
+    std::vector<Corners> key(count);
+    for (size_t f = 0; f < count; ++f) key[f] = sorted_corners(faces + 3 * f);
     std::vector<size_t> order(count);
     std::iota(order.begin(), order.end(), size_t(0));
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        const Corners x = sorted_corners(faces + 3 * a), y = sorted_corners(faces + 3 * b);
-        return x != y ? x < y : a < b;
-    });
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
     std::vector<uint8_t> left_out(count, 0);
-    std::set<Corners> taken;
     std::map<Edge, uint32_t> uses;  // the edges with an end checked, by the faces taken
     const auto is_checked = [&](uint64_t v) { return checked.count(v) != 0; };
+    const Corners* last_taken = nullptr;  // repeats of a face come right after it in `order`
     for (size_t f : order) {
         const uint64_t* t = faces + 3 * f;
-        bool fits = taken.insert(sorted_corners(t)).second;
+        bool fits = last_taken == nullptr || *last_taken != key[f];
         for (int i = 0; fits && i < 3; ++i) {
             const uint64_t a = t[i], b = t[(i + 1) % 3];
             const auto found = uses.find(edge_of(a, b));
@@ -52,6 +51,7 @@ std::vector<size_t> faces_breaking_manifold(const uint64_t* faces, size_t count,
             left_out[f] = 1;
             continue;
         }
+        last_taken = &key[f];
         for (int i = 0; i < 3; ++i) {
             const uint64_t a = t[i], b = t[(i + 1) % 3];
             if (is_checked(a) || is_checked(b)) ++uses[edge_of(a, b)];

@@ -326,6 +326,7 @@ class _Stitch:
         self.wall, self.odd, self.reads, self.added = wall, odd, reads, added
         # Once the sources reaching the wall are done: the points near it and where its input may reach.
         self.near = self.reach = None
+        self.blocker = None  # a source it waits for, found not done when last asked
         self.given = self.key = None
 
     def choices(self, source):
@@ -345,22 +346,26 @@ def _hull_of_reaching(sources, low, high):
     return min([low] + [source.low for source in reaching]), max([high] + [source.high for source in reaching])
 
 
-def _stitch_input(stitch, axis_values, coordinate, reach):
+def _stitch_input(stitch, axis_values, coordinate, reach, near):
     """What `stitch` is to be sent, once everything it may be sent is known: (ids of its points, the faces it
     is given as (source, indices into the source's faces) pairs); else None.
 
     A stitch is given the faces with a corner within `reach` of its wall and those sharing a corner with
     them. Every corner of a source's faces lies where the source reaches, so only the sources reaching the
     wall hold faces of the first kind, and only those reaching the first ones' corners faces of the second:
-    once those are done, the input is what it is when every task is done, as in the C loop."""
+    once those are done, the input is what it is when every task is done, as in the C loop. near(wall): the
+    points within `reach` of a wall, as _near gives them."""
+    if stitch.blocker is not None and not stitch.blocker.done():
+        return None  # at once: a driver of thousands of tiles asks after every task
     if stitch.reach is None:
         low, high = stitch.wall - reach, stitch.wall + reach
         first = [source for source in stitch.reads if source.reaches(low, high)]
-        if not all(source.done() for source in first):
+        stitch.blocker = next((source for source in first if not source.done()), None)
+        if stitch.blocker is not None:
             return None
         # Final now: the outliers near the wall are known (the tiles holding them are among the first), and
         # so are the faces touching the points near it.
-        stitch.near = _near(coordinate, stitch.wall, reach)
+        stitch.near = near(stitch.wall)
         marked = np.zeros(len(coordinate), dtype=bool)
         marked[stitch.near] = True
         touching = [source.faces[stitch.choices(source)] for source in first]
@@ -369,7 +374,8 @@ def _stitch_input(stitch, axis_values, coordinate, reach):
         corner_low, corner_high = _extent(axis_values[corners])
         stitch.reach = min(low, corner_low), max(high, corner_high)
     second = [source for source in stitch.reads if source.reaches(*stitch.reach)]
-    if not all(source.done() for source in second):
+    stitch.blocker = next((source for source in second if not source.done()), None)
+    if stitch.blocker is not None:
         return None
     choices = [stitch.choices(source) for source in second]
     faces = np.concatenate([np.empty((0, 3), dtype=np.uint64)] +
@@ -392,6 +398,9 @@ class _Stitching:
         self.coordinate = axis_values.copy()  # NaN at the tiles' outliers, as each tile reports them
         self.reach = reach
         self.tiles = [_Source(low, high) for low, high in tile_extents]
+        # The points in order along the axis, so that finding those near a wall looks at them alone.
+        self.by_coordinate = np.argsort(axis_values, kind="stable")
+        self.sorted_values = axis_values[self.by_coordinate]
         # Until it is sent, an even wall's stitch may be given points as far as the tiles it may read reach.
         self.even = [_Stitch(wall, False, self.tiles, _Source(*_hull_of_reaching(
             self.tiles, *_hull_of_reaching(self.tiles, wall - reach, wall + reach)))) for wall in walls[0::2]]
@@ -421,7 +430,7 @@ class _Stitching:
         given), taken off the waiting list."""
         found = []
         for stitch in list(self.waiting):
-            sent = _stitch_input(stitch, self.axis_values, self.coordinate, self.reach)
+            sent = _stitch_input(stitch, self.axis_values, self.coordinate, self.reach, self.near)
             if sent is None:
                 continue
             ids, stitch.given = sent
@@ -429,6 +438,14 @@ class _Stitching:
             self.waiting.remove(stitch)
             found.append((stitch, ids, np.concatenate([source.faces[indices] for source, indices in stitch.given])))
         return found
+
+    def near(self, wall):
+        """_near(self.coordinate, wall, self.reach) from the points within twice the reach alone (a wider
+        slice than the test's bounds, which round otherwise)."""
+        begin = np.searchsorted(self.sorted_values, wall - 2 * self.reach, side="left")
+        end = np.searchsorted(self.sorted_values, wall + 2 * self.reach, side="right")
+        candidates = np.sort(self.by_coordinate[begin:end])
+        return candidates[np.abs(self.coordinate[candidates] - wall) < self.reach]
 
     def faces(self):
         """The faces no stitch dropped: the tiles', in tile order, then the stitches', even walls first."""
@@ -456,6 +473,7 @@ def _tiles_and_stitches(client, array, cut, options, progress):
     # thread holds the tiles' until they are all done, and no stitch's is kept.
     bar = _progress_bar(tile_futures) if progress else None
     tile_keys = [future.key for future in tile_futures]
+    tile_of = {key: k for k, key in enumerate(tile_keys)}
     running = as_completed(tile_futures, with_results=True)
     del tile_futures
     stitch_of, stats = {}, {}
@@ -467,7 +485,7 @@ def _tiles_and_stitches(client, array, cut, options, progress):
             stitching.stitch_done(stitch_of[key], dropped, added)
         else:
             faces, outliers, stats[key] = result
-            stitching.tile_done(tile_keys.index(key), faces, outliers)
+            stitching.tile_done(tile_of[key], faces, outliers)
         for stitch, ids, given in stitching.ready():
             future = client.submit(stitch_task, array[ids], ids.astype(index_type), given, cut.axis, cut.spacing,
                                    stitch.wall, options, pure=False)
